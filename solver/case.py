@@ -1,0 +1,147 @@
+"""One shell, start to finish, in dimensionless units (lengths / R, forces / (C10 R^2),
+energies / (C10 R^3), gamma / (C10 R)): loading, one relaxation path per contact radius,
+and the energy method for any number of gamma values.
+
+A `PathSet` holds only arrays, so it can be stored, shipped to other processes and
+post-processed for any C10, R and gamma (DESIGN.md section 3).
+"""
+from dataclasses import dataclass, field
+import time
+
+import numpy as np
+
+from .energy import EnergySurface, energy_surface, equilibrium, pull_off
+from .forms import Discretisation, discretise
+from .geometry import Cap
+from .mesh import CapMesh, cap_mesh, mesh_spec
+from .path import LoadingPath, RelaxationPath, Settings, State, load, relax
+
+GAMMA_MAX = 0.03        # default largest gamma / (C10 R) the relaxation paths must serve
+STEPS_PER_PATH = 12     # relaxation steps down to the stop criterion (about)
+G_SAFETY = 4.0          # relax until the flat-punch estimate of G exceeds G_SAFETY * gamma_max
+
+
+def flat_punch_G(start: State, s: State) -> float:
+    """Estimate of G at state s of a relaxation path: (P1 - P)^2 / (4 pi a^2 k).
+
+    Exact for a flat punch on a half space (k = dP/ddelta = 2 E* a); used only to decide
+    how far to relax, never as a result.
+    """
+    k = s.dP_ddelta
+    if not k > 0:
+        return np.inf
+    return (start.P - s.P) ** 2 / (4 * np.pi * start.a ** 2 * k)
+
+
+def relaxation_starts(loading: LoadingPath, capmesh: CapMesh):
+    """Loaded states whose last held node is an element corner (one per contact radius).
+
+    A state ending on a midside node holds part of the next edge, and its energy does not
+    line up with its neighbours' (DESIGN.md section 7).
+    """
+    return [s for s in loading.events if s.joined > 0 and capmesh.outer_corner[s.joined]]
+
+
+def relax_from(d: Discretisation, interface: str, start: State, gamma_max: float = GAMMA_MAX,
+               settings: Settings = Settings()) -> RelaxationPath:
+    """Relax one loaded state until the estimated G exceeds G_SAFETY * gamma_max."""
+    G_stop = G_SAFETY * gamma_max
+    k0 = start.dP_ddelta
+    dP_total = np.sqrt(G_stop * 4 * np.pi * start.a ** 2 * k0)
+    step = min(dP_total / k0 / STEPS_PER_PATH, settings.step_max)
+    return relax(d, interface, start, lambda s: flat_punch_G(start, s) >= G_stop, step, settings)
+
+
+@dataclass(frozen=True, eq=False)
+class Relaxation:
+    """One relaxation path as arrays (delta decreasing from the loaded state)."""
+
+    a: float
+    delta: np.ndarray
+    P: np.ndarray
+    U: np.ndarray
+    ended_by: str
+    penetration: bool
+    centre_lifts: bool
+    newton_iterations: int
+
+    @classmethod
+    def of(cls, path: RelaxationPath):
+        return cls(path.start.a, path.array("delta"), path.array("P"), path.array("U"),
+                   path.ended_by, path.penetration, path.centre_lifts,
+                   path.timer.newton_iterations)
+
+
+@dataclass(frozen=True, eq=False)
+class PathSet:
+    """Everything the FE computes for one dimensionless shell (no C10, R or gamma)."""
+
+    t: float
+    h: float
+    interface: str
+    mesh: str
+    delta_max: float
+    gamma_max: float
+    loading_delta: np.ndarray
+    loading_P: np.ndarray
+    loading_a: np.ndarray
+    loading_U: np.ndarray
+    loading_joined: np.ndarray      # outer node joining at each state (-1: plain step)
+    relaxations: tuple
+    stats: dict = field(default_factory=dict)
+
+    def surface(self) -> EnergySurface:
+        usable = [r for r in self.relaxations if not r.centre_lifts and not r.penetration]
+        return energy_surface([(r.a, r.delta, r.P, r.U) for r in sorted(usable, key=lambda r: r.a)])
+
+    def pull_off(self, gamma: float, surface: EnergySurface = None):
+        """Equilibrium curve and pull-off for gamma / (C10 R)."""
+        if not 0 < gamma <= self.gamma_max:
+            raise ValueError(f"gamma/(C10 R) = {gamma:g} is outside the range these paths "
+                             f"serve (0, {self.gamma_max:g}]")
+        eq = equilibrium(surface or self.surface(), gamma)
+        return eq, pull_off(eq)
+
+
+def solve_loading(t: float, h: float, interface: str, mesh: str, delta_max: float,
+                  settings: Settings = Settings(), progress=None):
+    """Discretisation and loading path of one dimensionless shell."""
+    cm = cap_mesh(Cap(t, h), mesh_spec(mesh))
+    d = discretise(cm)
+    return d, load(d, interface, delta_max, settings, progress)
+
+
+def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "default",
+                delta_max: float = 0.25, gamma_max: float = GAMMA_MAX,
+                settings: Settings = Settings(), relax_paths: bool = True,
+                progress=None) -> tuple:
+    """Loading and relaxation paths of one shell: (PathSet, Discretisation, LoadingPath)."""
+    t0 = time.perf_counter()
+    d, loading = solve_loading(t, h, interface, mesh, delta_max, settings, progress)
+    t1 = time.perf_counter()
+    relaxations = ()
+    if relax_paths:
+        relaxations = tuple(Relaxation.of(relax_from(d, interface, s, gamma_max, settings))
+                            for s in relaxation_starts(loading, d.capmesh))
+    t2 = time.perf_counter()
+    stats = dict(dofs=int(d.ndof), elements=int(d.capmesh.mesh.nelements),
+                 loading_states=len(loading.states),
+                 loading_newton_iterations=loading.timer.newton_iterations,
+                 relaxation_newton_iterations=sum(r.newton_iterations for r in relaxations),
+                 assembly_s=loading.timer.assembly, linear_solve_s=loading.timer.solve,
+                 loading_s=t1 - t0, relaxation_s=t2 - t1)
+    return pathset_of(t, h, interface, mesh, delta_max, gamma_max, loading, relaxations,
+                      stats), d, loading
+
+
+def pathset_of(t, h, interface, mesh, delta_max, gamma_max, loading, relaxations, stats):
+    return PathSet(t, h, interface, mesh, delta_max, gamma_max,
+                   loading.array("delta"), loading.array("P"), loading.array("a"),
+                   loading.array("U"), loading.array("joined"), tuple(relaxations), stats)
+
+
+def relaxation_task(t: float, h: float, interface: str, mesh: str, start: State,
+                    gamma_max: float = GAMMA_MAX, settings: Settings = Settings()) -> Relaxation:
+    """One relaxation path as an independent task (rebuilds the discretisation)."""
+    d = discretise(cap_mesh(Cap(t, h), mesh_spec(mesh)))
+    return Relaxation.of(relax_from(d, interface, start, gamma_max, settings))

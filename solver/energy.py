@@ -1,0 +1,180 @@
+"""Maugis' energy ("graphical") method on loading and relaxation paths.
+
+Dimensionless throughout: lengths / R, forces / (C10 R^2), energies / (C10 R^3),
+gamma / (C10 R).  For each held contact radius a, U_E(a, delta) is a cubic Hermite
+spline in delta (its delta-derivative is P_rel exactly).  G(A, delta) = dU_E/dA at fixed
+delta is taken from a cubic spline in A = pi a^2 through the paths available at that
+delta.  G does not depend on gamma, so it is built once per shell; every gamma is then
+a root search along each path (equilibrium G = gamma) and a smooth interpolation of the
+equilibrium curve in a (pull-off points are the extrema of smooth curves, not nodes).
+"""
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.interpolate import CubicHermiteSpline, CubicSpline
+
+
+class OutOfRange(ValueError):
+    """The requested gamma is outside what the stored paths cover."""
+
+
+@dataclass(frozen=True, eq=False)
+class EnergySurface:
+    a: np.ndarray          # (n,) held contact radii (deformed)
+    delta1: np.ndarray     # (n,) loaded state of each path
+    P1: np.ndarray
+    delta_lo: np.ndarray   # (n,) lowest delta reached by each path
+    splines: tuple         # U_E(delta) per path
+    grid: np.ndarray       # (m,) delta grid
+    G: np.ndarray          # (n, m) dU_E/dA, NaN outside a path's delta range
+
+    @property
+    def A(self):
+        return np.pi * self.a ** 2
+
+    def U_E(self, k, delta):
+        return self.splines[k](delta)
+
+    def P_rel(self, k, delta):
+        return self.splines[k](delta, 1)
+
+
+def energy_surface(paths, n_grid=1500) -> EnergySurface:
+    """Build U_E(a, delta) and G(a, delta) from relaxation paths of increasing a.
+
+    `paths` is a sequence of (a, delta[], P[], U[]) with delta decreasing from delta1.
+    """
+    a = np.array([p[0] for p in paths])
+    splines, lo, d1, P1 = [], [], [], []
+    for _, delta, P, U in paths:
+        order = np.argsort(delta)
+        splines.append(CubicHermiteSpline(delta[order], U[order], P[order]))
+        lo.append(delta.min())
+        d1.append(delta[0])
+        P1.append(P[0])
+    lo, d1 = np.array(lo), np.array(d1)
+    grid = np.linspace(lo.min(), d1.max(), n_grid)
+    U = np.full((len(a), n_grid), np.nan)
+    for k, s in enumerate(splines):
+        inside = (grid >= lo[k]) & (grid <= d1[k])
+        U[k, inside] = s(grid[inside])
+    A = np.pi * a ** 2
+    G = np.full_like(U, np.nan)
+    avail = ~np.isnan(U)
+    # columns with the same set of available paths share one spline
+    patterns, which = np.unique(avail.T, axis=0, return_inverse=True)
+    for i, pattern in enumerate(patterns):
+        if pattern.sum() < 4:
+            continue
+        cols = np.flatnonzero(which.ravel() == i)
+        rows = np.flatnonzero(pattern)
+        spl = CubicSpline(A[rows], U[np.ix_(rows, cols)], axis=0)
+        # one-sided spline derivatives are poor: keep paths with two neighbours each side
+        both = np.zeros(len(a), dtype=bool)
+        both[2:-2] = pattern[:-4] & pattern[1:-3] & pattern[2:-2] & pattern[3:-1] & pattern[4:]
+        keep = both[rows]
+        G[np.ix_(rows[keep], cols)] = spl(A[rows[keep]], 1)
+    return EnergySurface(a, d1, np.array(P1), lo, tuple(splines), grid, G)
+
+
+@dataclass(frozen=True, eq=False)
+class Equilibrium:
+    """Equilibrium curve G = gamma: one point per path that reaches it."""
+
+    gamma: float
+    a: np.ndarray
+    delta: np.ndarray
+    P: np.ndarray
+    stable_fixed_load: np.ndarray   # dP/da > 0 along the curve
+    stable_fixed_grips: np.ndarray  # d(delta)/da > 0 along the curve
+
+
+@dataclass(frozen=True)
+class PullOff:
+    gamma: float
+    P_star: float
+    delta_star: float
+    a_star: float
+    P_dagger: float
+    delta_dagger: float
+    a_dagger: float
+    a0: float
+
+
+def equilibrium(surface: EnergySurface, gamma: float) -> Equilibrium:
+    """Points (a, delta, P) where G = gamma, nearest to each path's loaded state."""
+    a, dl, Pl = [], [], []
+    grid = surface.grid
+    for k in range(len(surface.a)):
+        g = surface.G[k]
+        ok = np.flatnonzero(~np.isnan(g))
+        if len(ok) < 2:
+            continue
+        gk, xk = g[ok][::-1], grid[ok][::-1]        # from delta1 downward
+        above = np.flatnonzero(gk >= gamma)
+        if len(above) == 0 or above[0] == 0:
+            continue
+        j = above[0]
+        t = (gamma - gk[j - 1]) / (gk[j] - gk[j - 1])
+        delta = xk[j - 1] + t * (xk[j] - xk[j - 1])
+        a.append(surface.a[k])
+        dl.append(delta)
+        Pl.append(float(surface.P_rel(k, delta)))
+    a, dl, Pl = map(np.array, (a, dl, Pl))
+    if len(a) < 4:
+        raise OutOfRange(f"gamma/(C10 R) = {gamma:g}: fewer than 4 relaxation paths reach "
+                         "equilibrium; the paths are too short for this gamma")
+    sP, sd = CubicSpline(a, Pl), CubicSpline(a, dl)
+    return Equilibrium(gamma, a, dl, Pl, sP(a, 1) > 0, sd(a, 1) > 0)
+
+
+def _interior_min(x, y):
+    """(x, y) of the lowest interior local minimum of the cubic spline through (x, y)."""
+    s = CubicSpline(x, y)
+    crit = s.derivative().roots(extrapolate=False)
+    crit = crit[(crit > x[0]) & (crit < x[-1]) & (s(crit, 2) > 0)]
+    if len(crit) == 0:
+        return None
+    best = crit[np.argmin(s(crit))]
+    return float(best), float(s(best))
+
+
+def pull_off(eq: Equilibrium) -> PullOff:
+    """Fixed-load (min P) and fixed-grips (min delta) pull-off, and a0 (P = 0)."""
+    star = _interior_min(eq.a, eq.P)
+    dagger = _interior_min(eq.a, eq.delta)
+    if star is None or dagger is None:
+        raise OutOfRange(f"gamma/(C10 R) = {eq.gamma:g}: pull-off is not bracketed by the "
+                         f"equilibrium curve (a from {eq.a[0]:.4g} to {eq.a[-1]:.4g} R)")
+    sP, sd = CubicSpline(eq.a, eq.P), CubicSpline(eq.a, eq.delta)
+    zeros = sP.roots(extrapolate=False)
+    zeros = zeros[zeros > star[0]]
+    a0 = float(zeros.min()) if len(zeros) else np.nan
+    return PullOff(eq.gamma, star[1], float(sd(star[0])), star[0],
+                   float(sP(dagger[0])), dagger[1], dagger[0], a0)
+
+
+def total_energy_fixed_load(surface: EnergySurface, gamma: float, P: float):
+    """U_T(A; P) = U_E - P delta - gamma A on each path where P_rel reaches P: (A, U_T)."""
+    A, UT = [], []
+    for k in range(len(surface.a)):
+        lo, hi = surface.delta_lo[k], surface.delta1[k]
+        d = np.linspace(lo, hi, 400)
+        Pk = surface.P_rel(k, d)
+        if not (Pk.min() <= P <= Pk.max()):
+            continue
+        j = np.argmin(np.abs(Pk - P))
+        # Newton polish on the Hermite spline
+        dj = d[j]
+        for _ in range(5):
+            dj -= (surface.P_rel(k, dj) - P) / surface.splines[k](dj, 2)
+        A.append(surface.A[k])
+        UT.append(float(surface.U_E(k, dj) - P * dj - gamma * surface.A[k]))
+    return np.array(A), np.array(UT)
+
+
+def total_energy_fixed_grips(surface: EnergySurface, gamma: float, delta: float):
+    """U_T(A; delta) = U_E - gamma A on each path whose range holds delta: (A, U_T)."""
+    k = np.flatnonzero((surface.delta_lo <= delta) & (surface.delta1 >= delta))
+    U = np.array([surface.U_E(i, delta) for i in k])
+    return surface.A[k], U - gamma * surface.A[k]

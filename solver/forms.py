@@ -1,0 +1,129 @@
+"""Axisymmetric mixed (Q2 displacement / Q1 pressure) forms, total Lagrangian.
+
+Unknowns, in units of R and C10: nodal u_r, u_z (Q2) and the multiplier p (Q1).
+Global layout: x = [u_r (n2), u_z (n2), p (n1)].  Integrals carry the full 2 pi r weight,
+so residual entries are forces over 360 degrees (units of C10 R^2) and the energy is in
+units of C10 R^3.  The deformation gradient is linear in u, so the strain-displacement
+operator B is assembled once and reused.
+"""
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+from skfem import CellBasis, ElementQuad1, ElementQuad2
+
+from .material import energy, lagrangian_derivatives
+from .mesh import CapMesh
+
+
+@dataclass(frozen=True, eq=False)
+class Discretisation:
+    """Everything about the FE space that does not change with the solution."""
+
+    capmesh: CapMesh
+    n2: int              # Q2 nodes
+    n1: int              # Q1 (pressure) nodes
+    edofs: np.ndarray    # (22, E) global dofs of each element: 9 u_r, 9 u_z, 4 p
+    B: np.ndarray        # (5, 18, E, Q) d f / d u_e
+    Np: np.ndarray       # (4, E, Q) pressure shape functions
+    w: np.ndarray        # (E, Q) quadrature weight * 2 pi r
+    r_q: np.ndarray      # (E, Q) reference radius of the quadrature points
+    z_q: np.ndarray
+    csr_indptr: np.ndarray
+    csr_indices: np.ndarray
+    csr_slot: np.ndarray # (E * 22 * 22,) position of each element entry in the CSR data
+
+    @property
+    def ndof(self) -> int:
+        return 2 * self.n2 + self.n1
+
+    def ur(self, nodes):
+        return np.asarray(nodes)
+
+    def uz(self, nodes):
+        return self.n2 + np.asarray(nodes)
+
+
+def discretise(capmesh: CapMesh) -> Discretisation:
+    mesh = capmesh.mesh
+    bu = CellBasis(mesh, ElementQuad2(), intorder=4)
+    bp = CellBasis(mesh, ElementQuad1(), quadrature=bu.quadrature)
+    n2, n1 = bu.N, bp.N
+    E, Q = bu.nelems, bu.X.shape[1]
+    rq, zq = bu.mapping.F(bu.X)
+    N = np.array([bu.basis[a][0].value for a in range(9)])
+    dN = np.array([bu.basis[a][0].grad for a in range(9)])  # (9, 2, E, Q)
+    B = np.zeros((5, 18, E, Q))
+    B[0, :9] = dN[:, 0]
+    B[1, :9] = dN[:, 1]
+    B[4, :9] = N / rq
+    B[2, 9:] = dN[:, 0]
+    B[3, 9:] = dN[:, 1]
+    Np = np.array([bp.basis[b][0].value for b in range(4)])
+    edofs = np.vstack([bu.element_dofs, n2 + bu.element_dofs, 2 * n2 + bp.element_dofs])
+    ndof = 2 * n2 + n1
+    rows = np.broadcast_to(edofs.T[:, :, None], (E, 22, 22)).ravel()
+    cols = np.broadcast_to(edofs.T[:, None, :], (E, 22, 22)).ravel()
+    keys, slot = np.unique(rows.astype(np.int64) * ndof + cols, return_inverse=True)
+    indices = (keys % ndof).astype(np.int32)
+    indptr = np.searchsorted(keys // ndof, np.arange(ndof + 1)).astype(np.int32)
+    return Discretisation(capmesh, n2, n1, edofs, B, Np, bu.dx * 2 * np.pi * rq, rq, zq,
+                          indptr, indices, slot.ravel())
+
+
+def _fields(d: Discretisation, x):
+    xe = x[d.edofs]                                   # (22, E)
+    f = np.einsum("iaeq,ae->ieq", d.B, xe[:18])
+    f[[0, 3, 4]] += 1.0
+    p = np.einsum("beq,be->eq", d.Np, xe[18:])
+    return f, p
+
+
+def deformation(d: Discretisation, x):
+    """Deformation 5-vector f (5, E, Q) and multiplier p (E, Q) at the quadrature points."""
+    return _fields(d, x)
+
+
+def strain_energy(d: Discretisation, x) -> float:
+    """Strain energy / (C10 R^3), the integral of W over the deformed shell (360 degrees)."""
+    f, _ = _fields(d, x)
+    return float(np.sum(energy(f) * d.w))
+
+
+def volume_change(d: Discretisation, x) -> float:
+    """Integral of (J - 1) dV / R^3: zero for an exactly incompressible solution."""
+    f, _ = _fields(d, x)
+    J = (f[0] * f[3] - f[1] * f[2]) * f[4]
+    return float(np.sum((J - 1.0) * d.w))
+
+
+def residual(d: Discretisation, x):
+    """Internal force vector dL/dx (units of C10 R^2; pressure rows: volume / R^3)."""
+    f, p = _fields(d, x)
+    dL, _, J, _ = lagrangian_derivatives(f, p)
+    return _scatter_vector(d, np.einsum("iaeq,ieq->ae", d.B, dL * d.w), (J - 1.0) * d.w)
+
+
+def _scatter_vector(d, ru, jw):
+    re = np.vstack([ru, np.einsum("beq,eq->be", d.Np, jw)])
+    return np.bincount(d.edofs.ravel(), weights=re.ravel(), minlength=d.ndof)
+
+
+def tangent(d: Discretisation, x):
+    """Consistent tangent (CSR, symmetric indefinite) and residual at x."""
+    f, p = _fields(d, x)
+    dL, d2L, J, dJ = lagrangian_derivatives(f, p)
+    w = d.w
+    r = _scatter_vector(d, np.einsum("iaeq,ieq->ae", d.B, dL * w), (J - 1.0) * w)
+    E, Q = w.shape
+    Bq = d.B.transpose(2, 3, 0, 1)                            # (E, Q, 5, 18)
+    DB = np.matmul(np.moveaxis(d2L * w, (0, 1), (2, 3)), Bq)  # (E, Q, 5, 18)
+    Kuu = np.matmul(Bq.reshape(E, Q * 5, 18).transpose(0, 2, 1), DB.reshape(E, Q * 5, 18))
+    Kup = np.einsum("iaeq,ieq,ceq->eac", d.B, dJ * w, d.Np)
+    Ke = np.zeros((E, 22, 22))
+    Ke[:, :18, :18] = Kuu
+    Ke[:, :18, 18:] = Kup
+    Ke[:, 18:, :18] = Kup.transpose(0, 2, 1)
+    data = np.bincount(d.csr_slot, weights=Ke.ravel(), minlength=len(d.csr_indices))
+    K = sp.csr_matrix((data, d.csr_indices, d.csr_indptr), shape=(d.ndof, d.ndof))
+    return K, r

@@ -1,0 +1,190 @@
+"""Quadratic quadrilateral mesh of the cap's meridian cross-section (units of R).
+
+A shell (t < 1) is one mapped block: polar angle along the meridian, radius through the
+thickness.  A solid cap (t = 1) is three transfinite-interpolation blocks around the
+apex, the rim and the axis.  Element sizes grow geometrically from the apex, where
+contact forms, toward the rim; through the thickness they grow from the outer surface.
+Nodes (Q2, 9 per element) lie exactly on the spheres.
+"""
+from dataclasses import dataclass, replace
+import math
+
+import numpy as np
+from skfem import MeshQuad1, MeshQuad2, ElementQuad2
+
+from .geometry import Cap, InputError
+
+
+@dataclass(frozen=True)
+class MeshSpec:
+    """Mesh density, lengths in units of R."""
+
+    name: str
+    h_apex: float        # element size along the outer surface at the apex
+    growth: float        # size ratio of neighbouring elements along the outer surface
+    h_max: float         # largest element size along the outer surface
+    layer0: float        # first element size through the thickness, at the outer surface
+    layer_growth: float  # size ratio of neighbouring layers
+    layer_max: float     # largest layer size
+
+
+_BASE = MeshSpec("default", h_apex=0.004, growth=1.08, h_max=0.08,
+                 layer0=0.008, layer_growth=1.35, layer_max=0.08)
+
+
+def mesh_spec(name: str) -> MeshSpec:
+    """The named mesh: 'coarse', 'default' or 'fine' (each halves the sizes of the last)."""
+    levels = {"coarse": -1, "default": 0, "fine": 1, "finer": 2}
+    if name not in levels:
+        raise InputError(f"mesh: {name!r} must be one of coarse, default, fine")
+    f = 2.0 ** (-levels[name])
+    b = _BASE
+    return MeshSpec(name, b.h_apex * f, b.growth ** f, b.h_max * f,
+                    b.layer0 * f, b.layer_growth ** f, b.layer_max * f)
+
+
+def graded(length, h0, growth, hmax):
+    """Node positions 0..length with sizes h0, h0*growth, ... capped at hmax."""
+    sizes = []
+    total, h = 0.0, h0
+    while total < length * (1 - 1e-12):
+        sizes.append(h)
+        total += h
+        h = min(h * growth, hmax)
+    sizes = np.array(sizes)
+    # the last element takes what is left; merge it if it would be a sliver
+    excess = total - length
+    if len(sizes) > 1 and sizes[-1] - excess < 0.5 * sizes[-2]:
+        sizes = sizes[:-1]
+    sizes *= length / sizes.sum()
+    return np.concatenate([[0.0], np.cumsum(sizes)])
+
+
+def with_midpoints(x):
+    """Q2 parameter positions: corners and midpoints."""
+    out = np.empty(2 * len(x) - 1)
+    out[0::2] = x
+    out[1::2] = 0.5 * (x[:-1] + x[1:])
+    return out
+
+
+def _shell_block(cap, spec):
+    theta = graded(cap.theta_outer, spec.h_apex, spec.growth, spec.h_max)
+    sigma = with_midpoints(theta / cap.theta_outer)
+    depth = with_midpoints(graded(cap.t, spec.layer0, spec.layer_growth,
+                                  min(spec.layer_max, cap.t / 2)))
+    rho = 1.0 - depth
+    th = sigma[:, None] * np.arccos((1.0 - cap.h) / rho)[None, :]
+    return np.stack([rho * np.sin(th), 1.0 - rho * np.cos(th)], axis=-1)
+
+
+def _segment(p, q, u):
+    return p[None, :] + u[:, None] * (q - p)[None, :]
+
+
+def _tfi(bottom, top, left, right):
+    """Transfinite interpolation grid (ns, nt, 2) from four boundary point arrays."""
+    u = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(bottom, axis=0).T))])
+    v = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(left, axis=0).T))])
+    u, v = (u / u[-1])[:, None, None], (v / v[-1])[None, :, None]
+    b, t = bottom[:, None, :], top[:, None, :]
+    l, r = left[None, :, :], right[None, :, :]
+    corners = ((1 - u) * (1 - v) * bottom[0] + u * (1 - v) * bottom[-1]
+               + (1 - u) * v * top[0] + u * v * top[-1])
+    return (1 - v) * b + v * t + (1 - u) * l + u * r - corners
+
+
+def _solid_blocks(cap, spec):
+    theta = graded(cap.theta_outer, spec.h_apex, spec.growth, spec.h_max)
+    k = int(np.argmin(np.abs(theta - min(0.6, 0.6 * cap.theta_outer))))
+    th = with_midpoints(theta)
+    arc = np.stack([np.sin(th), 1.0 - np.cos(th)], axis=-1)
+    A, B, C = arc[0], arc[-1], np.array([0.0, cap.h])
+    M_ab = arc[2 * k]
+    M_ca = np.array([0.0, 0.4 * cap.h])
+    M_bc = 0.5 * (B + C)
+    G = 0.7 * (M_ab + M_ca - A) + 0.3 * (A + B + C) / 3.0
+    ua = with_midpoints(theta[: k + 1] / theta[k])
+    ub = with_midpoints((theta[k:] - theta[k]) / (theta[-1] - theta[k]))
+    uc = with_midpoints(graded(M_ca[1], spec.layer0, spec.layer_growth, spec.layer_max) / M_ca[1])
+    block1 = _tfi(arc[: 2 * k + 1], _segment(M_ca, G, ua), _segment(A, M_ca, uc), _segment(M_ab, G, uc))
+    block2 = _tfi(arc[2 * k:], _segment(G, M_bc, ub), _segment(M_ab, G, uc), _segment(B, M_bc, uc))
+    block3 = _tfi(_segment(M_ca, G, ua), _segment(C, M_bc, ua), _segment(M_ca, C, ub), _segment(G, M_bc, ub))
+    return [block1, block2, block3]
+
+
+@dataclass(frozen=True, eq=False)
+class CapMesh:
+    """A Q2 mesh of the cap with its boundary node sets (Q2 node indices)."""
+
+    cap: Cap
+    spec: MeshSpec
+    mesh: MeshQuad2
+    outer: np.ndarray        # outer-surface nodes, ordered from the apex toward the rim
+    outer_corner: np.ndarray # True where the outer node is an element corner
+    inner: np.ndarray
+    rim: np.ndarray
+    axis: np.ndarray
+
+    @property
+    def nodes(self) -> np.ndarray:
+        return self.mesh.doflocs
+
+
+def cap_mesh(cap: Cap, spec: MeshSpec) -> CapMesh:
+    """Mesh the cross-section of `cap` (units of R) with density `spec`."""
+    blocks = [_shell_block(cap, spec)] if not cap.solid else _solid_blocks(cap, spec)
+    verts, cells, where = [], [], []
+    offset = 0
+    for b, grid in enumerate(blocks):
+        corners = grid[::2, ::2]
+        ns, nt = corners.shape[0] - 1, corners.shape[1] - 1
+        idx = offset + np.arange(corners.shape[0] * corners.shape[1]).reshape(corners.shape[:2])
+        verts.append(corners.reshape(-1, 2))
+        i, j = np.meshgrid(np.arange(ns), np.arange(nt), indexing="ij")
+        i, j = i.ravel(), j.ravel()
+        cells.append(np.stack([idx[i, j], idx[i + 1, j], idx[i + 1, j + 1], idx[i, j + 1]]))
+        where.append(np.stack([np.full_like(i, b), i, j]))
+        offset += corners.shape[0] * corners.shape[1]
+    verts = np.concatenate(verts)
+    cells = np.concatenate(cells, axis=1)
+    where = np.concatenate(where, axis=1)
+    key = np.round(verts / 1e-10).astype(np.int64)
+    _, first, inverse = np.unique(key, axis=0, return_index=True, return_inverse=True)
+    order = np.argsort(first)
+    renumber = np.empty_like(order)
+    renumber[order] = np.arange(len(order))
+    p = verts[first[order]].T
+    t = renumber[inverse.ravel()][cells]
+    m2 = MeshQuad2.from_mesh(MeshQuad1(p, t))
+    doflocs = np.array(m2.doflocs, order="C")
+    loc = (2 * ElementQuad2.doflocs).astype(int)  # (9, 2) local Q2 grid offsets
+    edofs = m2.dofs.element_dofs
+    for b, grid in enumerate(blocks):
+        sel = where[0] == b
+        ii = 2 * where[1, sel][None, :] + loc[:, 0][:, None]
+        jj = 2 * where[2, sel][None, :] + loc[:, 1][:, None]
+        doflocs[:, edofs[:, sel]] = np.moveaxis(grid[ii, jj], -1, 0)
+    mesh = MeshQuad2(np.ascontiguousarray(doflocs), m2.t)
+    return _with_boundaries(cap, spec, mesh)
+
+
+def _with_boundaries(cap, spec, mesh):
+    r, z = mesh.doflocs
+    tol = 1e-9
+    rho = np.hypot(r, z - 1.0)
+    outer = np.flatnonzero(np.abs(rho - 1.0) < tol)
+    outer = outer[np.argsort(np.arctan2(r[outer], 1.0 - z[outer]))]
+    inner = (np.flatnonzero(np.abs(rho - (1.0 - cap.t)) < tol) if not cap.solid
+             else np.array([], dtype=int))
+    rim = np.flatnonzero(np.abs(z - cap.h) < tol)
+    axis = np.flatnonzero(r < tol)
+    corner = outer < mesh.nvertices
+    return CapMesh(cap, spec, mesh, outer, corner, inner, rim, axis)
+
+
+def refined(spec: MeshSpec) -> MeshSpec:
+    """The next finer mesh of the same family (sizes halved)."""
+    return replace(spec, name=spec.name + "+", h_apex=spec.h_apex / 2, growth=math.sqrt(spec.growth),
+                   h_max=spec.h_max / 2, layer0=spec.layer0 / 2,
+                   layer_growth=math.sqrt(spec.layer_growth), layer_max=spec.layer_max / 2)

@@ -1,0 +1,342 @@
+"""Path following: loading with exact contact events, and relaxation at fixed contact.
+
+All quantities are dimensionless: lengths / R, forces / (C10 R^2), energies / (C10 R^3).
+delta > 0 is approach (rim pushed down), P > 0 compression.
+
+Each Newton step solves the symmetric indefinite saddle-point system of the free dofs.
+A contact event is located exactly by a bordered Newton: delta becomes an unknown and
+"the gap of node k is zero" is added as an equation, so every loaded state in which a
+node joins the contact is found without bisection.
+"""
+from dataclasses import dataclass, field
+import time
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from .contact import (Constraints, constraints, contact_reactions, deformed_radius, gaps,
+                      rim_load)
+from .forms import Discretisation, strain_energy, tangent
+
+
+class ConvergenceError(RuntimeError):
+    """Newton did not converge even at the smallest step."""
+
+
+@dataclass(frozen=True)
+class Settings:
+    """Solver tolerances; lengths in units of R."""
+
+    tol: float = 1e-10        # force residual relative to the largest reaction
+    atol: float = 1e-15       # absolute force residual floor (units of C10 R^2)
+    gap_tol: float = 1e-9     # penetration allowed before an event is re-located
+    max_iter: int = 12
+    step_max: float = 0.02    # largest delta increment
+    step_min: float = 1e-9
+
+
+@dataclass(frozen=True, eq=False)
+class State:
+    """A converged equilibrium state."""
+
+    delta: float
+    P: float
+    U: float                  # strain energy
+    a: float                  # deformed radius of the outermost held node
+    held: tuple               # held outer nodes (indices into CapMesh.outer)
+    joined: int               # outer node that joined in this state, -1 if none
+    x: np.ndarray = field(repr=False)
+    dP_ddelta: float = np.nan
+    residuals: tuple = ()     # Newton residual history of the solve that produced it
+
+
+@dataclass
+class Timer:
+    assembly: float = 0.0
+    solve: float = 0.0
+    newton_iterations: int = 0
+    solves: int = 0
+
+
+@dataclass(frozen=True, eq=False)
+class LoadingPath:
+    """Loading without adhesion from delta = 0; states at every event and step."""
+
+    interface: str
+    states: tuple
+    timer: Timer
+
+    @property
+    def events(self):
+        return tuple(s for s in self.states if s.joined >= 0)
+
+    def array(self, name):
+        return np.array([getattr(s, name) for s in self.states])
+
+
+@dataclass(frozen=True, eq=False)
+class RelaxationPath:
+    """delta lowered from a loaded state with its contact zone held."""
+
+    interface: str
+    start: State
+    states: tuple
+    ended_by: str
+    penetration: bool         # a node outside the held zone touched the plane
+    centre_lifts: bool        # the plane had to pull the centre down while pushing elsewhere
+    timer: Timer
+
+    def array(self, name):
+        return np.array([getattr(s, name) for s in self.states])
+
+
+class _Problem:
+    """Newton machinery on one discretisation (no state kept between calls)."""
+
+    def __init__(self, d: Discretisation, interface: str, settings: Settings, timer: Timer):
+        self.d, self.interface, self.s, self.timer = d, interface, settings, timer
+        cm = d.capmesh
+        self.Z = cm.nodes[1, cm.outer]
+        self._plan_key = None
+
+    def assemble(self, x):
+        t0 = time.perf_counter()
+        K, r = tangent(self.d, x)
+        self.timer.assembly += time.perf_counter() - t0
+        return K, r
+
+    def factor(self, K, c: Constraints):
+        """LU of the free block of K, and d(residual of the free dofs)/d(delta)."""
+        t0 = time.perf_counter()
+        sel, indices, indptr = self._plan(K, c)
+        n = len(c.free)
+        # K is symmetric, so its CSR arrays restricted to the free block are also CSC
+        Kff = sp.csc_matrix((K.data[sel], indices, indptr), shape=(n, n))
+        try:
+            lu = spla.splu(Kff, permc_spec="COLAMD", diag_pivot_thresh=0.0)
+        except RuntimeError:
+            lu = spla.splu(Kff, permc_spec="COLAMD")
+        e = np.zeros(self.d.ndof)
+        e[c.rimz] = 1.0
+        dr_ddelta = -(K @ e)[c.free]
+        self.timer.solve += time.perf_counter() - t0
+        self.timer.solves += 1
+        return lu, dr_ddelta
+
+    def _plan(self, K, c):
+        key = id(c)
+        if self._plan_key != key:
+            rows = np.repeat(np.arange(K.shape[0]), np.diff(K.indptr))
+            sel = (c.free_pos[rows] >= 0) & (c.free_pos[K.indices] >= 0)
+            sub_rows = c.free_pos[rows[sel]]
+            indptr = np.concatenate([[0], np.cumsum(np.bincount(sub_rows, minlength=len(c.free)))])
+            self._plan_cache = (np.flatnonzero(sel), c.free_pos[K.indices[sel]].astype(np.int32),
+                                indptr.astype(np.int32))
+            self._plan_key = key
+            self._plan_constraints = c
+        return self._plan_cache
+
+    def solve(self, lu, rhs):
+        t0 = time.perf_counter()
+        out = lu.solve(rhs)
+        self.timer.solve += time.perf_counter() - t0
+        return out
+
+    def converged(self, r, c):
+        res = np.abs(r[c.free]).max()
+        scale = np.abs(r[c.fixed]).max()
+        return res, res <= self.s.tol * scale + self.s.atol
+
+    def newton(self, c: Constraints, x, delta, target=None):
+        """Equilibrium at fixed delta, or (target = outer node) where its gap is zero.
+
+        Returns (x, delta, K, r, history).  Raises ConvergenceError.
+        """
+        d = self.d
+        x = x.copy()
+        x[c.rimz] = -delta
+        if target is not None:
+            kdof = d.uz(d.capmesh.outer[target])
+            kpos = c.free_pos[kdof]
+        history = []
+        lu = None
+        for _ in range(self.s.max_iter):
+            K, r = self.assemble(x)
+            if not np.all(np.isfinite(r)):
+                raise ConvergenceError("non-finite residual (element inverted)")
+            res, ok = self.converged(r, c)
+            history.append(res)
+            if ok and (target is None or abs(x[kdof] + self.Z[target]) <= 1e-3 * self.s.gap_tol):
+                self.last_lu = lu if history[1:] else None
+                return x, delta, K, r, tuple(history)
+            if len(history) > 3 and res > 1e3 * history[1]:
+                break
+            lu, dr_dd = self.factor(K, c)
+            self.timer.newton_iterations += 1
+            a = self.solve(lu, -r[c.free])
+            if target is None:
+                dx = a
+            else:
+                b = self.solve(lu, -dr_dd)
+                dd = (-(x[kdof] + self.Z[target]) - a[kpos]) / b[kpos]
+                dx = a + b * dd
+                delta += dd
+                x[c.rimz] = -delta
+            x[c.free] += dx
+        raise ConvergenceError(f"Newton did not converge (residuals {history[-3:]})")
+
+    def tangent_direction(self, K, c, lu=None):
+        """dx/ddelta (full vector) and dP/ddelta at the state of K.
+
+        `lu` may be the factorisation of the last Newton iterate (same constraints).
+        """
+        if lu is None:
+            lu, _ = self.factor(K, c)
+        e = np.zeros(self.d.ndof)
+        e[c.rimz] = 1.0
+        dr_dd = -(K @ e)[c.free]
+        b_free = self.solve(lu, -dr_dd)
+        dx = np.zeros(self.d.ndof)
+        dx[c.free] = b_free
+        dx[c.rimz] = -1.0
+        dP = -float(np.sum(K[c.rimz] @ dx))
+        return dx, dP
+
+    def state(self, c, x, delta, r, held, joined, history, dP=np.nan):
+        d = self.d
+        a = float(deformed_radius(d, x, held[-1])) if len(held) else 0.0
+        return State(delta, rim_load(d, r), strain_energy(d, x), a, tuple(held), joined,
+                     x.copy(), dP, history)
+
+
+def load(d: Discretisation, interface: str, delta_max: float,
+         settings: Settings = Settings(), progress=None) -> LoadingPath:
+    """Push the rim down from delta = 0 to delta_max, locating every contact event.
+
+    `progress(delta)` is called after each converged state if given.
+    """
+    timer = Timer()
+    pb = _Problem(d, interface, settings, timer)
+    n_outer = len(d.capmesh.outer)
+    held = [0]
+    x = np.zeros(d.ndof)
+    delta = 0.0
+    c = constraints(d, interface, held)
+    K, r = pb.assemble(x)
+    states = [pb.state(c, x, delta, r, held, 0, ())]
+    step_cap = settings.step_max
+    reuse = None
+    while delta < delta_max * (1 - 1e-12):
+        dx, dP = pb.tangent_direction(K, c, reuse)
+        states[-1] = _with_stiffness(states[-1], dP)
+        free_nodes = np.setdiff1d(np.arange(n_outer), held)
+        g = gaps(d, x, free_nodes)
+        dg = dx[d.uz(d.capmesh.outer[free_nodes])]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            to_touch = np.where(dg < 0, -g / dg, np.inf)
+        k = int(np.argmin(to_touch))
+        step = min(step_cap, delta_max - delta)
+        target = int(free_nodes[k]) if to_touch[k] <= step else None
+        step = to_touch[k] if target is not None else step
+        try:
+            for _ in range(20):
+                xn, dn, Kn, rn, hist = pb.newton(c, x + dx * step, delta + step, target)
+                gn = gaps(d, xn, free_nodes)
+                gn[free_nodes == target] = 0.0
+                if gn.min() >= -settings.gap_tol:
+                    break
+                # another node touched first: locate that event instead
+                target = int(free_nodes[np.argmin(gn)])
+                step = to_touch[np.argmin(gn)] if np.isfinite(to_touch[np.argmin(gn)]) else step / 2
+            else:
+                raise ConvergenceError("contact front could not be resolved")
+        except ConvergenceError:
+            step_cap = step / 2
+            if step_cap < settings.step_min:
+                raise ConvergenceError(
+                    f"loading stalled at delta = {delta:.6g} R: Newton fails even for a step "
+                    f"of {settings.step_min:g} R") from None
+            continue
+        step_cap = min(settings.step_max, 2 * step_cap)
+        x, delta, K, r = xn, dn, Kn, rn
+        reuse = pb.last_lu if target is None else None
+        joined = -1
+        if target is not None:
+            held = held + [target]
+            x[d.uz(d.capmesh.outer[target])] = -pb.Z[target]
+            joined = target
+            c = constraints(d, interface, held)
+        if interface == "frictionless":
+            n_held = len(held)
+            x, K, r, held, c, hist = _release_tensile(pb, x, delta, K, r, held, c, hist)
+            if len(held) != n_held:
+                reuse = None
+        states.append(pb.state(c, x, delta, r, held, joined, hist))
+        if progress is not None:
+            progress(delta)
+    dx, dP = pb.tangent_direction(K, c)
+    states[-1] = _with_stiffness(states[-1], dP)
+    return LoadingPath(interface, tuple(states), timer)
+
+
+def _with_stiffness(s: State, dP):
+    return State(s.delta, s.P, s.U, s.a, s.held, s.joined, s.x, dP, s.residuals)
+
+
+def _release_tensile(pb, x, delta, K, r, held, c, hist):
+    """Unilateral contact: release held nodes pulled by the plane, re-solve, repeat."""
+    d = pb.d
+    while len(held) > 1:
+        react = contact_reactions(d, r, held)
+        scale = max(np.abs(react).max(), 1e-30)
+        worst = int(np.argmin(react))
+        if react[worst] >= -1e-8 * scale:
+            break
+        held = [h for i, h in enumerate(held) if i != worst]
+        c = constraints(d, pb.interface, held)
+        x, delta, K, r, hist = pb.newton(c, x, delta)
+    return x, K, r, held, c, hist
+
+
+def relax(d: Discretisation, interface: str, start: State, stop, step: float,
+          settings: Settings = Settings()) -> RelaxationPath:
+    """Lower delta from `start` with its held nodes kept, in steps of about `step`.
+
+    `stop(state)` ends the path when it returns True (the state is kept).
+    """
+    timer = Timer()
+    pb = _Problem(d, interface, settings, timer)
+    held = list(start.held)
+    c = constraints(d, interface, held)
+    x, delta = start.x.copy(), start.delta
+    K, r = pb.assemble(x)
+    dx, dP = pb.tangent_direction(K, c)
+    states = [_with_stiffness(start, dP)]
+    outside = np.setdiff1d(np.arange(len(d.capmesh.outer)), held)
+    h = step
+    penetration = centre_lifts = False
+    ended_by = "stop criterion"
+    while True:
+        try:
+            xn, dn, Kn, rn, hist = pb.newton(c, x - dx * h, delta - h)
+        except ConvergenceError:
+            h /= 2
+            if h < step * 1e-3:
+                ended_by = f"no convergence below delta = {delta:.6g} R"
+                break
+            continue
+        x, delta, K, r = xn, dn, Kn, rn
+        dx, dP = pb.tangent_direction(K, c, pb.last_lu)
+        s = pb.state(c, x, delta, r, held, -1, hist, dP)
+        states.append(s)
+        if len(outside) and gaps(d, x, outside).min() < -settings.gap_tol:
+            penetration = True
+        react = contact_reactions(d, r, held)
+        if react[0] < 0 and react.max() > 0 and len(held) > 2:
+            centre_lifts = True
+        if stop(s):
+            break
+        h = min(step, 2 * h)
+    return RelaxationPath(interface, start, tuple(states), ended_by, penetration,
+                          centre_lifts, timer)

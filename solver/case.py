@@ -60,6 +60,7 @@ class Relaxation:
     delta: np.ndarray
     P: np.ndarray
     U: np.ndarray
+    dP_ddelta: np.ndarray
     ended_by: str
     penetration: bool
     centre_lifts: bool
@@ -68,7 +69,7 @@ class Relaxation:
     @classmethod
     def of(cls, path: RelaxationPath):
         return cls(path.start.a, path.array("delta"), path.array("P"), path.array("U"),
-                   path.ended_by, path.penetration, path.centre_lifts,
+                   path.array("dP_ddelta"), path.ended_by, path.penetration, path.centre_lifts,
                    path.timer.newton_iterations)
 
 

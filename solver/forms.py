@@ -34,6 +34,11 @@ class Discretisation:
     csr_slot: np.ndarray # (E * 22 * 22,) position of each element entry in the CSR data
 
     @property
+    def force_scale(self) -> float:
+        """C10 * volume / size of the body: the natural force unit of round-off."""
+        return float(self.w.sum() / self.capmesh.mesh.doflocs.max())
+
+    @property
     def ndof(self) -> int:
         return 2 * self.n2 + self.n1
 
@@ -44,14 +49,15 @@ class Discretisation:
         return self.n2 + np.asarray(nodes)
 
 
-def discretise(capmesh: CapMesh) -> Discretisation:
+def discretise(capmesh: CapMesh, C10: float = 1.0) -> Discretisation:
+    """FE space of `capmesh`; `C10` scales the material (1 = the dimensionless solver)."""
     mesh = capmesh.mesh
     bu = CellBasis(mesh, ElementQuad2(), intorder=4)
     bp = CellBasis(mesh, ElementQuad1(), quadrature=bu.quadrature)
     n2, n1 = bu.N, bp.N
     E, Q = bu.nelems, bu.X.shape[1]
     rq, zq = bu.mapping.F(bu.X)
-    N = np.array([bu.basis[a][0].value for a in range(9)])
+    N = np.array([np.asarray(bu.basis[a][0]) for a in range(9)])
     dN = np.array([bu.basis[a][0].grad for a in range(9)])  # (9, 2, E, Q)
     B = np.zeros((5, 18, E, Q))
     B[0, :9] = dN[:, 0]
@@ -59,7 +65,7 @@ def discretise(capmesh: CapMesh) -> Discretisation:
     B[4, :9] = N / rq
     B[2, 9:] = dN[:, 0]
     B[3, 9:] = dN[:, 1]
-    Np = np.array([bp.basis[b][0].value for b in range(4)])
+    Np = np.array([np.asarray(bp.basis[b][0]) for b in range(4)])
     edofs = np.vstack([bu.element_dofs, n2 + bu.element_dofs, 2 * n2 + bp.element_dofs])
     ndof = 2 * n2 + n1
     rows = np.broadcast_to(edofs.T[:, :, None], (E, 22, 22)).ravel()
@@ -67,7 +73,7 @@ def discretise(capmesh: CapMesh) -> Discretisation:
     keys, slot = np.unique(rows.astype(np.int64) * ndof + cols, return_inverse=True)
     indices = (keys % ndof).astype(np.int32)
     indptr = np.searchsorted(keys // ndof, np.arange(ndof + 1)).astype(np.int32)
-    return Discretisation(capmesh, n2, n1, edofs, B, Np, bu.dx * 2 * np.pi * rq, rq, zq,
+    return Discretisation(capmesh, n2, n1, edofs, B, Np, bu.dx * 2 * np.pi * rq * C10, rq, zq,
                           indptr, indices, slot.ravel())
 
 

@@ -188,3 +188,9 @@ def refined(spec: MeshSpec) -> MeshSpec:
     return replace(spec, name=spec.name + "+", h_apex=spec.h_apex / 2, growth=math.sqrt(spec.growth),
                    h_max=spec.h_max / 2, layer0=spec.layer0 / 2,
                    layer_growth=math.sqrt(spec.layer_growth), layer_max=spec.layer_max / 2)
+
+
+def scaled(cm: CapMesh, length: float) -> CapMesh:
+    """The same mesh with every coordinate multiplied by `length` (a dimensional mesh)."""
+    mesh = MeshQuad2(np.ascontiguousarray(cm.mesh.doflocs * length), cm.mesh.t)
+    return replace(cm, mesh=mesh)

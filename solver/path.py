@@ -8,7 +8,7 @@ A contact event is located exactly by a bordered Newton: delta becomes an unknow
 "the gap of node k is zero" is added as an equation, so every loaded state in which a
 node joins the contact is found without bisection.
 """
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 import time
 
 import numpy as np
@@ -29,7 +29,7 @@ class Settings:
     """Solver tolerances; lengths in units of R."""
 
     tol: float = 1e-10        # force residual relative to the largest reaction
-    atol: float = 1e-15       # absolute force residual floor (units of C10 R^2)
+    atol: float = 1e-13       # residual floor, relative to C10 * volume / size
     gap_tol: float = 1e-9     # penetration allowed before an event is re-located
     max_iter: int = 12
     step_max: float = 0.02    # largest delta increment
@@ -47,8 +47,9 @@ class State:
     held: tuple               # held outer nodes (indices into CapMesh.outer)
     joined: int               # outer node that joined in this state, -1 if none
     x: np.ndarray = field(repr=False)
-    dP_ddelta: float = np.nan
+    dP_ddelta: float = np.nan  # dP/ddelta with this state's held set (right derivative)
     residuals: tuple = ()     # Newton residual history of the solve that produced it
+    dP_ddelta_left: float = np.nan  # dP/ddelta before the joining node was held
 
 
 @dataclass
@@ -146,7 +147,7 @@ class _Problem:
     def converged(self, r, c):
         res = np.abs(r[c.free]).max()
         scale = np.abs(r[c.fixed]).max()
-        return res, res <= self.s.tol * scale + self.s.atol
+        return res, res <= self.s.tol * scale + self.s.atol * self.d.force_scale
 
     def newton(self, c: Constraints, x, delta, target=None):
         """Equilibrium at fixed delta, or (target = outer node) where its gap is zero.
@@ -242,6 +243,10 @@ def load(d: Discretisation, interface: str, delta_max: float,
         try:
             for _ in range(20):
                 xn, dn, Kn, rn, hist = pb.newton(c, x + dx * step, delta + step, target)
+                if target is not None and dn > delta_max:
+                    # the event lies beyond the end of the path: stop at delta_max instead
+                    target, step = None, delta_max - delta
+                    xn, dn, Kn, rn, hist = pb.newton(c, x + dx * step, delta_max)
                 gn = gaps(d, xn, free_nodes)
                 gn[free_nodes == target] = 0.0
                 if gn.min() >= -settings.gap_tol:
@@ -261,6 +266,7 @@ def load(d: Discretisation, interface: str, delta_max: float,
         step_cap = min(settings.step_max, 2 * step_cap)
         x, delta, K, r = xn, dn, Kn, rn
         reuse = pb.last_lu if target is None else None
+        _, dP_left = pb.tangent_direction(K, c, pb.last_lu)
         joined = -1
         if target is not None:
             held = held + [target]
@@ -272,7 +278,8 @@ def load(d: Discretisation, interface: str, delta_max: float,
             x, K, r, held, c, hist = _release_tensile(pb, x, delta, K, r, held, c, hist)
             if len(held) != n_held:
                 reuse = None
-        states.append(pb.state(c, x, delta, r, held, joined, hist))
+        states.append(replace(pb.state(c, x, delta, r, held, joined, hist),
+                              dP_ddelta_left=dP_left))
         if progress is not None:
             progress(delta)
     dx, dP = pb.tangent_direction(K, c)
@@ -281,7 +288,8 @@ def load(d: Discretisation, interface: str, delta_max: float,
 
 
 def _with_stiffness(s: State, dP):
-    return State(s.delta, s.P, s.U, s.a, s.held, s.joined, s.x, dP, s.residuals)
+    left = dP if s.joined < 0 and np.isnan(s.dP_ddelta_left) else s.dP_ddelta_left
+    return replace(s, dP_ddelta=dP, dP_ddelta_left=left)
 
 
 def _release_tensile(pb, x, delta, K, r, held, c, hist):

@@ -1,0 +1,192 @@
+"""The `shell-adhesion` command line.
+
+    shell-adhesion case --R 20 --t 3 --h 20 --C10 0.3 [--gamma 30 ...] [--json]
+    shell-adhesion run workflow.yaml --out results/ [--scheduler ADDRESS] [--catalogue DIR]
+    shell-adhesion catalogue list [--catalogue DIR]
+
+Bad input prints one line naming the flag, the value and the rule, and exits with 2.
+"""
+import argparse
+import json
+import math
+import sys
+import time
+
+from solver import GAMMA_MAX, INTERFACES, InputError, __version__
+from solver.path import Settings
+
+MESHES = ("coarse", "default", "fine")
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):
+        self.exit(2, f"{self.prog}: error: {message}\n")
+
+
+def _number(flag, text, unit):
+    try:
+        value = float(text)
+    except (TypeError, ValueError):
+        raise InputError(f"{flag}: {text!r} must be a number ({unit})") from None
+    if not math.isfinite(value):
+        raise InputError(f"{flag}: {text!r} must be a finite number ({unit})")
+    return value
+
+
+def _case_input(ns):
+    """Validated dimensional input of `case`; raises InputError naming the flag."""
+    R = _number("--R", ns.R, "mm")
+    t = _number("--t", ns.t, "mm")
+    h = _number("--h", ns.h, "mm")
+    C10 = _number("--C10", ns.C10, "MPa")
+    if R <= 0:
+        raise InputError(f"--R: {R:g} must be > 0 (mm)")
+    if not 0 < t <= R:
+        raise InputError(f"--t: {t:g} must satisfy 0 < t <= R = {R:g} (mm)")
+    if not 0 < h <= R:
+        raise InputError(f"--h: {h:g} must satisfy 0 < h <= R = {R:g} (mm)")
+    if t < R and h <= t:
+        raise InputError(f"--h: {h:g} must be > t = {t:g} (mm) unless t = R (solid cap)")
+    if C10 <= 0:
+        raise InputError(f"--C10: {C10:g} must be > 0 (MPa)")
+    delta_max = R / 4 if ns.delta_max is None else _number("--delta-max", ns.delta_max, "mm")
+    if not 0 < delta_max < h:
+        raise InputError(f"--delta-max: {delta_max:g} must satisfy 0 < delta-max < h = {h:g} (mm)")
+    gammas = [_number("--gamma", g, "J/m^2") for g in ns.gamma or []]
+    for g in gammas:
+        if g <= 0:
+            raise InputError(f"--gamma: {g:g} must be > 0 (J/m^2)")
+        g_hat = g * 1e-3 / (C10 * R)
+        if g_hat > GAMMA_MAX:
+            raise InputError(f"--gamma: {g:g} gives gamma/(C10 R) = {g_hat:.4g}, which must be "
+                             f"<= {GAMMA_MAX:g} (supported range of the relaxation paths)")
+    return dict(R_mm=R, t_mm=t, h_mm=h, C10_MPa=C10, delta_max_mm=delta_max,
+                gamma_J_m2=gammas, interface=ns.interface, mesh=ns.mesh)
+
+
+def _run_case(ns):
+    from solver.case import pathset_of, relax_from, relaxation_starts, solve_loading
+    from solver.geometry import Cap
+    from tqdm import tqdm
+
+    from .case_report import adhesion_dicts, loading_dict, relaxation_list
+
+    inp = _case_input(ns)
+    R, C10 = inp["R_mm"], inp["C10_MPa"]
+    Cap(inp["t_mm"] / R, inp["h_mm"] / R)
+    g_hats = [g * 1e-3 / (C10 * R) for g in inp["gamma_J_m2"]]
+    gamma_max = max(g_hats) * 1.25 if g_hats else GAMMA_MAX
+    t0 = time.perf_counter()
+    delta_max = inp["delta_max_mm"] / R
+    with tqdm(total=round(inp["delta_max_mm"], 6), unit="mm", desc="loading", file=sys.stderr,
+              disable=None, leave=False) as bar:
+        def progress(delta):
+            bar.update(round(delta * R, 6) - bar.n)
+        d, loading = solve_loading(inp["t_mm"] / R, inp["h_mm"] / R, inp["interface"],
+                                   inp["mesh"], delta_max, Settings(), progress)
+    t1 = time.perf_counter()
+    relaxations = []
+    if g_hats:
+        from solver.case import Relaxation
+        starts = relaxation_starts(loading, d.capmesh)
+        for s in tqdm(starts, desc="relaxation paths", file=sys.stderr, disable=None, leave=False):
+            relaxations.append(Relaxation.of(relax_from(d, inp["interface"], s, gamma_max)))
+    t2 = time.perf_counter()
+    stats = dict(dofs=int(d.ndof), elements=int(d.capmesh.mesh.nelements))
+    ps = pathset_of(inp["t_mm"] / R, inp["h_mm"] / R, inp["interface"], inp["mesh"], delta_max,
+                    gamma_max, loading, relaxations, stats)
+    out = {"input": inp, "loading": loading_dict(ps, R, C10)}
+    if g_hats:
+        out["relaxation"] = relaxation_list(ps, R, C10)
+        out["equilibrium"], out["pull_off"] = adhesion_dicts(ps, R, inp["t_mm"], C10,
+                                                             inp["gamma_J_m2"])
+    t3 = time.perf_counter()
+    settings = Settings()
+    out["provenance"] = {
+        "version": __version__, "mesh": inp["mesh"], "interface": inp["interface"],
+        "dofs": int(d.ndof), "elements": int(d.capmesh.mesh.nelements),
+        "newton_iterations": loading.timer.newton_iterations
+        + sum(r.newton_iterations for r in relaxations),
+        "wall_s": round(t3 - t0, 3),
+        "time_split_s": {"loading": round(t1 - t0, 3), "relaxation": round(t2 - t1, 3),
+                         "energy_method": round(t3 - t2, 3)},
+        "tolerances": {"newton_rtol": settings.tol, "newton_atol": settings.atol,
+                       "gap_tol_over_R": settings.gap_tol},
+        "relaxation_gamma_max_over_C10R": gamma_max}
+    if ns.json:
+        json.dump(out, sys.stdout, indent=1)
+        sys.stdout.write("\n")
+    else:
+        _print_case(out)
+    return 0
+
+
+def _print_case(out):
+    inp, ld = out["input"], out["loading"]
+    print(f"shell R = {inp['R_mm']:g} mm, t = {inp['t_mm']:g} mm, h = {inp['h_mm']:g} mm, "
+          f"C10 = {inp['C10_MPa']:g} MPa, interface {inp['interface']}, mesh {inp['mesh']}")
+    print(f"{'delta [mm]':>12} {'P [N]':>12} {'a [mm]':>10}")
+    n = len(ld["delta_mm"])
+    for i in sorted(set(list(range(0, n, max(1, n // 15))) + [n - 1])):
+        print(f"{ld['delta_mm'][i]:12.4f} {ld['P_N'][i]:12.4f} {ld['a_mm'][i]:10.4f}")
+    for po in out.get("pull_off", []):
+        fl, fg = po["fixed_load"], po["fixed_grips"]
+        print(f"gamma = {po['gamma_J_m2']:g} J/m^2: fixed load P* = {fl['P_N']:.4f} N, "
+              f"delta* = {fl['delta_mm']:.4f} mm, a* = {fl['a_mm']:.4f} mm; fixed grips "
+              f"P = {fg['P_N']:.4f} N, delta = {fg['delta_mm']:.4f} mm, a = {fg['a_mm']:.4f} mm; "
+              f"a0 = {po['a0_mm']:.4f} mm; eta = {po['eta']:.3g}")
+    p = out["provenance"]
+    print(f"{p['dofs']} dofs, {p['newton_iterations']} Newton iterations, {p['wall_s']:.1f} s")
+
+
+def _parser():
+    parser = _Parser(prog="shell-adhesion",
+                     description="Adhesion of a soft hyperelastic spherical-cap shell on a rigid plane.")
+    parser.add_argument("--version", action="version", version=__version__)
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    case = sub.add_parser("case", help="solve one shell: loading curve, and pull-off for each --gamma")
+    case.add_argument("--R", required=True, help="outer radius of curvature R [mm]")
+    case.add_argument("--t", required=True, help="shell thickness t [mm], 0 < t <= R (t = R: solid)")
+    case.add_argument("--h", required=True, help="depth h from apex to base plane [mm], t < h <= R")
+    case.add_argument("--C10", required=True, help="neo-Hookean constant C10 [MPa] (shear modulus 2 C10)")
+    case.add_argument("--delta-max", dest="delta_max", default=None,
+                      help="largest rim approach delta [mm] (default R/4)")
+    case.add_argument("--gamma", action="append",
+                      help="adhesion energy gamma [J/m^2]; repeat for several (one FE run serves all)")
+    case.add_argument("--interface", choices=INTERFACES, default="no_slip",
+                      help="interface model (default no_slip, the paper's cohesive contact)")
+    case.add_argument("--mesh", choices=MESHES, default="default", help="mesh density")
+    case.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    run = sub.add_parser("run", help="run a study YAML on dask; write netCDF, tables and figures")
+    run.add_argument("study", help="study file (YAML)")
+    run.add_argument("--out", default="results", help="output folder (default results/)")
+    run.add_argument("--scheduler", default=None, help="address of a dask.distributed scheduler")
+    run.add_argument("--catalogue", default=None, help="catalogue folder")
+    cat = sub.add_parser("catalogue", help="inspect the catalogue of solved path sets")
+    cat.add_argument("action", choices=("list",))
+    cat.add_argument("--catalogue", default=None, help="catalogue folder")
+    return parser
+
+
+def main(argv=None):
+    ns = _parser().parse_args(argv)
+    try:
+        if ns.command == "case":
+            return _run_case(ns)
+        if ns.command == "run":
+            from .run import run_study
+            return run_study(ns.study, ns.out, scheduler=ns.scheduler, catalogue_dir=ns.catalogue)
+        if ns.command == "catalogue":
+            from catalogue import list_entries
+            rows = list_entries(ns.catalogue)
+            for row in rows:
+                print(row)
+            return 0
+    except InputError as err:
+        print(f"shell-adhesion: error: {err}", file=sys.stderr)
+        return 2
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

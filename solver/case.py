@@ -34,12 +34,27 @@ def flat_punch_G(start: State, s: State) -> float:
 
 
 def relaxation_starts(loading: LoadingPath, capmesh: CapMesh):
-    """Loaded states whose last held node is an element corner (one per contact radius).
+    """Loaded states to relax: one per contact radius, all ending on the same node type.
 
-    A state ending on a midside node holds part of the next edge, and its energy does not
-    line up with its neighbours' (DESIGN.md section 7).
+    A state ending on a midside node holds part of the next edge, so its energy does not
+    line up with a corner-ended neighbour's (G would oscillate, DESIGN.md section 7).
+    Where the contact front is not monotone (a node touches before the one inside it),
+    the state with the gap is skipped and the one that closes it is used.  The states
+    whose front is whole form two families, ending on corners or on midside nodes; the
+    larger family is used, never a mix.
     """
-    return [s for s in loading.events if s.joined > 0 and capmesh.outer_corner[s.joined]]
+    families = {True: [], False: []}
+    for s in loading.events:
+        m = max(s.held)
+        if m > 0 and set(range(max(0, m - 3), m + 1)) <= set(s.held):
+            families[bool(capmesh.outer_corner[m])].append(s)
+    corner, midside = families[True], families[False]
+    return corner if len(corner) >= len(midside) else midside
+
+
+def has_hole(state: State) -> bool:
+    """True if a node inside the contact zone is not held (the centre has lifted)."""
+    return len(state.held) < max(state.held) + 1
 
 
 def relax_from(d: Discretisation, interface: str, start: State, gamma_max: float = GAMMA_MAX,
@@ -69,8 +84,8 @@ class Relaxation:
     @classmethod
     def of(cls, path: RelaxationPath):
         return cls(path.start.a, path.array("delta"), path.array("P"), path.array("U"),
-                   path.array("dP_ddelta"), path.ended_by, path.penetration, path.centre_lifts,
-                   path.timer.newton_iterations)
+                   path.array("dP_ddelta"), path.ended_by, path.penetration,
+                   path.centre_lifts or has_hole(path.start), path.timer.newton_iterations)
 
 
 @dataclass(frozen=True, eq=False)

@@ -3,10 +3,11 @@
 Dimensionless throughout: lengths / R, forces / (C10 R^2), energies / (C10 R^3),
 gamma / (C10 R).  For each held contact radius a, U_E(a, delta) is a cubic Hermite
 spline in delta (its delta-derivative is P_rel exactly).  G(A, delta) = dU_E/dA at fixed
-delta is taken from a cubic spline in A = pi a^2 through the paths available at that
-delta.  G does not depend on gamma, so it is built once per shell; every gamma is then
-a root search along each path (equilibrium G = gamma) and a smooth interpolation of the
-equilibrium curve in a (pull-off points are the extrema of smooth curves, not nodes).
+delta is the central difference between neighbouring paths, which is second-order
+accurate at the midpoint in A = pi a^2 of the pair and needs only the two paths to
+overlap in delta.  G does not depend on gamma, so it is built once per shell; every gamma
+is then a root search along each pair (equilibrium G = gamma) and a smooth interpolation
+of the equilibrium curve in a (pull-off points are extrema of smooth curves, not nodes).
 """
 from dataclasses import dataclass
 
@@ -20,13 +21,14 @@ class OutOfRange(ValueError):
 
 @dataclass(frozen=True, eq=False)
 class EnergySurface:
-    a: np.ndarray          # (n,) held contact radii (deformed)
+    a: np.ndarray          # (n,) held contact radii (deformed), increasing
     delta1: np.ndarray     # (n,) loaded state of each path
     P1: np.ndarray
     delta_lo: np.ndarray   # (n,) lowest delta reached by each path
     splines: tuple         # U_E(delta) per path
     grid: np.ndarray       # (m,) delta grid
-    G: np.ndarray          # (n, m) dU_E/dA, NaN outside a path's delta range
+    a_pair: np.ndarray     # (n-1,) radius of the midpoint in A of paths k and k+1
+    G: np.ndarray          # (n-1, m) dU_E/dA at a_pair, NaN where the pair does not overlap
 
     @property
     def A(self):
@@ -38,13 +40,19 @@ class EnergySurface:
     def P_rel(self, k, delta):
         return self.splines[k](delta, 1)
 
+    def P_pair(self, k, delta):
+        """P at the pair midpoint (mean of the two paths: second order in A)."""
+        return 0.5 * (self.P_rel(k, delta) + self.P_rel(k + 1, delta))
 
-def energy_surface(paths, n_grid=1500) -> EnergySurface:
+
+def energy_surface(paths, n_grid=2000) -> EnergySurface:
     """Build U_E(a, delta) and G(a, delta) from relaxation paths of increasing a.
 
     `paths` is a sequence of (a, delta[], P[], U[]) with delta decreasing from delta1.
     """
     a = np.array([p[0] for p in paths])
+    if np.any(np.diff(a) <= 0):
+        raise ValueError("relaxation paths must have increasing contact radii")
     splines, lo, d1, P1 = [], [], [], []
     for _, delta, P, U in paths:
         order = np.argsort(delta)
@@ -55,26 +63,13 @@ def energy_surface(paths, n_grid=1500) -> EnergySurface:
     lo, d1 = np.array(lo), np.array(d1)
     grid = np.linspace(lo.min(), d1.max(), n_grid)
     U = np.full((len(a), n_grid), np.nan)
-    for k, s in enumerate(splines):
+    for k, spl in enumerate(splines):
         inside = (grid >= lo[k]) & (grid <= d1[k])
-        U[k, inside] = s(grid[inside])
+        U[k, inside] = spl(grid[inside])
     A = np.pi * a ** 2
-    G = np.full_like(U, np.nan)
-    avail = ~np.isnan(U)
-    # columns with the same set of available paths share one spline
-    patterns, which = np.unique(avail.T, axis=0, return_inverse=True)
-    for i, pattern in enumerate(patterns):
-        if pattern.sum() < 4:
-            continue
-        cols = np.flatnonzero(which.ravel() == i)
-        rows = np.flatnonzero(pattern)
-        spl = CubicSpline(A[rows], U[np.ix_(rows, cols)], axis=0)
-        # one-sided spline derivatives are poor: keep paths with two neighbours each side
-        both = np.zeros(len(a), dtype=bool)
-        both[2:-2] = pattern[:-4] & pattern[1:-3] & pattern[2:-2] & pattern[3:-1] & pattern[4:]
-        keep = both[rows]
-        G[np.ix_(rows[keep], cols)] = spl(A[rows[keep]], 1)
-    return EnergySurface(a, d1, np.array(P1), lo, tuple(splines), grid, G)
+    G = (U[1:] - U[:-1]) / np.diff(A)[:, None]
+    a_pair = np.sqrt(0.5 * (A[1:] + A[:-1]) / np.pi)
+    return EnergySurface(a, d1, np.array(P1), lo, tuple(splines), grid, a_pair, G)
 
 
 @dataclass(frozen=True, eq=False)
@@ -102,10 +97,11 @@ class PullOff:
 
 
 def equilibrium(surface: EnergySurface, gamma: float) -> Equilibrium:
-    """Points (a, delta, P) where G = gamma, nearest to each path's loaded state."""
+    """Points (a, delta, P) where G = gamma, one per pair of neighbouring paths, the first
+    reached when delta is lowered from the pair's loaded states."""
     a, dl, Pl = [], [], []
     grid = surface.grid
-    for k in range(len(surface.a)):
+    for k in range(len(surface.a_pair)):
         g = surface.G[k]
         ok = np.flatnonzero(~np.isnan(g))
         if len(ok) < 2:
@@ -117,9 +113,9 @@ def equilibrium(surface: EnergySurface, gamma: float) -> Equilibrium:
         j = above[0]
         t = (gamma - gk[j - 1]) / (gk[j] - gk[j - 1])
         delta = xk[j - 1] + t * (xk[j] - xk[j - 1])
-        a.append(surface.a[k])
+        a.append(surface.a_pair[k])
         dl.append(delta)
-        Pl.append(float(surface.P_rel(k, delta)))
+        Pl.append(float(surface.P_pair(k, delta)))
     a, dl, Pl = map(np.array, (a, dl, Pl))
     if len(a) < 4:
         raise OutOfRange(f"gamma/(C10 R) = {gamma:g}: fewer than 4 relaxation paths reach "

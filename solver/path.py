@@ -115,7 +115,7 @@ class _Problem:
         # K is symmetric, so its CSR arrays restricted to the free block are also CSC
         Kff = sp.csc_matrix((K.data[sel], indices, indptr), shape=(n, n))
         try:
-            lu = spla.splu(Kff, permc_spec="COLAMD", diag_pivot_thresh=0.0)
+            lu = spla.splu(Kff, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0)
         except RuntimeError:
             lu = spla.splu(Kff, permc_spec="COLAMD")
         e = np.zeros(self.d.ndof)
@@ -206,7 +206,7 @@ class _Problem:
 
     def state(self, c, x, delta, r, held, joined, history, dP=np.nan):
         d = self.d
-        a = float(deformed_radius(d, x, held[-1])) if len(held) else 0.0
+        a = float(deformed_radius(d, x, max(held))) if len(held) else 0.0
         return State(delta, rim_load(d, r), strain_energy(d, x), a, tuple(held), joined,
                      x.copy(), dP, history)
 

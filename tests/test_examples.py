@@ -1,0 +1,15 @@
+"""The examples run, and the base-case example lands near the paper's P* = -1.70 N."""
+import importlib.util
+import pathlib
+
+from solver.scaling import force_N
+
+EXAMPLES = pathlib.Path(__file__).parent.parent / "examples"
+
+
+def test_ex01_base_case():
+    spec = importlib.util.spec_from_file_location("ex01", EXAMPLES / "ex01_base_case.py")
+    ex = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(ex)
+    po = ex.pull_off("coarse")
+    assert -1.9 < force_N(po.P_star, 0.3, 20.0) < -1.5

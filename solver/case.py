@@ -130,15 +130,24 @@ def solve_loading(t: float, h: float, interface: str, mesh: str, delta_max: floa
 def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "default",
                 delta_max: float = 0.25, gamma_max: float = GAMMA_MAX,
                 settings: Settings = Settings(), relax_paths: bool = True,
-                progress=None) -> tuple:
-    """Loading and relaxation paths of one shell: (PathSet, Discretisation, LoadingPath)."""
+                progress=None, map=None) -> tuple:
+    """Loading and relaxation paths of one shell: (PathSet, Discretisation, LoadingPath).
+
+    `map` (e.g. an executor's map) runs the independent relaxation paths in parallel.
+    """
     t0 = time.perf_counter()
     d, loading = solve_loading(t, h, interface, mesh, delta_max, settings, progress)
     t1 = time.perf_counter()
     relaxations = ()
     if relax_paths:
-        relaxations = tuple(Relaxation.of(relax_from(d, interface, s, gamma_max, settings))
-                            for s in relaxation_starts(loading, d.capmesh))
+        starts = relaxation_starts(loading, d.capmesh)
+        if map is None:
+            relaxations = tuple(Relaxation.of(relax_from(d, interface, s, gamma_max, settings))
+                                for s in starts)
+        else:
+            n = len(starts)
+            relaxations = tuple(map(relaxation_task, [t] * n, [h] * n, [interface] * n,
+                                    [mesh] * n, starts, [gamma_max] * n, [settings] * n))
     t2 = time.perf_counter()
     stats = dict(dofs=int(d.ndof), elements=int(d.capmesh.mesh.nelements),
                  loading_states=len(loading.states),

@@ -26,10 +26,13 @@ class MeshSpec:
     layer0: float        # first element size through the thickness, at the outer surface
     layer_growth: float  # size ratio of neighbouring layers
     layer_max: float     # largest layer size
+    uniform: float = 0.0 # arc length from the apex meshed at h_apex before growth starts
 
 
+# uniform out to 0.15 R (3 mm on the paper's shell): the pull-off radii (a*/R ~ 0.1) and
+# the JKR/Hertz contact zones sit in elements of one size, so G converges there
 _BASE = MeshSpec("default", h_apex=0.004, growth=1.08, h_max=0.08,
-                 layer0=0.008, layer_growth=1.35, layer_max=0.08)
+                 layer0=0.008, layer_growth=1.35, layer_max=0.08, uniform=0.15)
 
 
 def mesh_spec(name: str) -> MeshSpec:
@@ -40,17 +43,18 @@ def mesh_spec(name: str) -> MeshSpec:
     f = 2.0 ** (-levels[name])
     b = _BASE
     return MeshSpec(name, b.h_apex * f, b.growth ** f, b.h_max * f,
-                    b.layer0 * f, b.layer_growth ** f, b.layer_max * f)
+                    b.layer0 * f, b.layer_growth ** f, b.layer_max * f, b.uniform)
 
 
-def graded(length, h0, growth, hmax):
-    """Node positions 0..length with sizes h0, h0*growth, ... capped at hmax."""
+def graded(length, h0, growth, hmax, uniform=0.0):
+    """Node positions 0..length: size h0 up to `uniform`, then h0*growth, ... capped at hmax."""
     sizes = []
     total, h = 0.0, h0
     while total < length * (1 - 1e-12):
         sizes.append(h)
         total += h
-        h = min(h * growth, hmax)
+        if total >= uniform:
+            h = min(h * growth, hmax)
     sizes = np.array(sizes)
     # the last element takes what is left; merge it if it would be a sliver
     excess = total - length
@@ -69,7 +73,7 @@ def with_midpoints(x):
 
 
 def _shell_block(cap, spec):
-    theta = graded(cap.theta_outer, spec.h_apex, spec.growth, spec.h_max)
+    theta = graded(cap.theta_outer, spec.h_apex, spec.growth, spec.h_max, spec.uniform)
     sigma = with_midpoints(theta / cap.theta_outer)
     depth = with_midpoints(graded(cap.t, spec.layer0, spec.layer_growth,
                                   min(spec.layer_max, cap.t / 2)))
@@ -95,7 +99,7 @@ def _tfi(bottom, top, left, right):
 
 
 def _solid_blocks(cap, spec):
-    theta = graded(cap.theta_outer, spec.h_apex, spec.growth, spec.h_max)
+    theta = graded(cap.theta_outer, spec.h_apex, spec.growth, spec.h_max, spec.uniform)
     k = int(np.argmin(np.abs(theta - min(0.6, 0.6 * cap.theta_outer))))
     th = with_midpoints(theta)
     arc = np.stack([np.sin(th), 1.0 - np.cos(th)], axis=-1)

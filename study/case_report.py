@@ -9,8 +9,14 @@ from solver.case import PathSet
 from solver.scaling import energy_mJ, force_N, gamma_hat, length_mm
 
 
+def _num(v, digits=10):
+    """A JSON-safe number: None where the value is undefined (NaN)."""
+    v = float(v)
+    return None if not np.isfinite(v) else float(f"{v:.{digits}g}")
+
+
 def _list(x, digits=10):
-    return [float(f"{v:.{digits}g}") for v in np.asarray(x, dtype=float)]
+    return [_num(v, digits) for v in np.asarray(x, dtype=float)]
 
 
 def loading_dict(ps: PathSet, R_mm, C10_MPa):
@@ -41,8 +47,8 @@ def adhesion_dicts(ps: PathSet, R_mm, t_mm, C10_MPa, gammas_J_m2):
     equilibria, pull_offs = [], []
     for g in gammas_J_m2:
         eq, po = ps.pull_off(gamma_hat(g, C10_MPa, R_mm), surface)
-        L = lambda v: float(length_mm(v, R_mm))
-        F = lambda v: float(force_N(v, C10_MPa, R_mm))
+        L = lambda v: _num(length_mm(v, R_mm))
+        F = lambda v: _num(force_N(v, C10_MPa, R_mm))
         equilibria.append({"gamma_J_m2": g, "a_mm": _list(length_mm(eq.a, R_mm)),
                            "P_N": _list(force_N(eq.P, C10_MPa, R_mm)),
                            "delta_mm": _list(length_mm(eq.delta, R_mm)),

@@ -114,11 +114,15 @@ def _run_case(ns):
                        "gap_tol_over_R": settings.gap_tol},
         "relaxation_gamma_max_over_C10R": gamma_max}
     if ns.json:
-        json.dump(out, sys.stdout, indent=1)
+        json.dump(out, sys.stdout, indent=1, allow_nan=False)
         sys.stdout.write("\n")
     else:
         _print_case(out)
     return 0
+
+
+def _fmt(v, unit=" mm"):
+    return "undefined (the equilibrium curve ends before P = 0)" if v is None else f"{v:.4f}{unit}"
 
 
 def _print_case(out):
@@ -134,7 +138,7 @@ def _print_case(out):
         print(f"gamma = {po['gamma_J_m2']:g} J/m^2: fixed load P* = {fl['P_N']:.4f} N, "
               f"delta* = {fl['delta_mm']:.4f} mm, a* = {fl['a_mm']:.4f} mm; fixed grips "
               f"P = {fg['P_N']:.4f} N, delta = {fg['delta_mm']:.4f} mm, a = {fg['a_mm']:.4f} mm; "
-              f"a0 = {po['a0_mm']:.4f} mm; eta = {po['eta']:.3g}")
+              f"a0 = {_fmt(po['a0_mm'])}; eta = {po['eta']:.3g}")
     p = out["provenance"]
     print(f"{p['dofs']} dofs, {p['newton_iterations']} Newton iterations, {p['wall_s']:.1f} s")
 
@@ -177,10 +181,8 @@ def main(argv=None):
             from .run import run_study
             return run_study(ns.study, ns.out, scheduler=ns.scheduler, catalogue_dir=ns.catalogue)
         if ns.command == "catalogue":
-            from catalogue import list_entries
-            rows = list_entries(ns.catalogue)
-            for row in rows:
-                print(row)
+            from catalogue import format_entries, list_entries
+            print(format_entries(list_entries(ns.catalogue)))
             return 0
     except InputError as err:
         print(f"shell-adhesion: error: {err}", file=sys.stderr)

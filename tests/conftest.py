@@ -1,5 +1,7 @@
 """Shared, cached solutions (the real solver; coarse meshes unless a test needs more)."""
 import functools
+import multiprocessing
+from concurrent.futures import ProcessPoolExecutor
 
 import pytest
 
@@ -11,9 +13,16 @@ GAMMA_HAT = GAMMA * 1e-3 / (C10_MPA * R_MM)
 
 
 @functools.lru_cache(maxsize=None)
+def _pool():
+    # relaxation paths are independent tasks; spawn, so no thread state is forked
+    return ProcessPoolExecutor(max_workers=2, mp_context=multiprocessing.get_context("spawn"))
+
+
+@functools.lru_cache(maxsize=None)
 def base_case(mesh="coarse", interface="no_slip", gamma_max=0.006, delta_max=0.25):
     """Loading and relaxation paths of the paper's base shell: (PathSet, d, loading)."""
-    return solve_paths(BASE["t"], BASE["h"], interface, mesh, delta_max, gamma_max)
+    return solve_paths(BASE["t"], BASE["h"], interface, mesh, delta_max, gamma_max,
+                       map=_pool().map)
 
 
 @pytest.fixture(scope="session")

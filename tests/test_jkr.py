@@ -5,13 +5,16 @@ import pytest
 from solver import solve_paths, theory
 from solver.scaling import force_N, gamma_hat, length_mm
 
+from conftest import _pool
+
 R_MM, C10, GAMMA = 20.0, 0.3, 1.0
 
 
 @pytest.fixture(scope="module")
 def jkr():
     g = gamma_hat(GAMMA, C10, R_MM)
-    ps, _, _ = solve_paths(1.0, 1.0, "no_slip", "default", delta_max=0.011, gamma_max=1.25 * g)
+    ps, _, _ = solve_paths(1.0, 1.0, "no_slip", "default", delta_max=0.011, gamma_max=1.25 * g,
+                           map=_pool().map)
     _, po = ps.pull_off(g)
     return po
 

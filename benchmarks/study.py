@@ -1,0 +1,70 @@
+"""Benchmark: cold and warm wall time of a study, and of a 5 C10 x 5 gamma grid on one shell.
+
+cold: a fresh temporary catalogue, every path set computed on dask (a local cluster of
+processes unless --scheduler); warm: the same study again on that catalogue (all reused,
+no cluster started).  The grid shows the scaling of DESIGN.md section 3: 25 points, one
+set of FE paths.
+
+Run: python benchmarks/study.py [study.yaml] [--mesh coarse] [--workers N] [--scheduler ADDR]
+     [--grid-only]
+The default study is workflow.yaml (11 shells on the default mesh: its cold run is long).
+"""
+import argparse
+from pathlib import Path
+import sys
+import tempfile
+
+import yaml
+
+HERE = Path(__file__).resolve().parent
+# this script shares its name with the `study` package: import the package, not itself
+sys.path[:] = [p for p in sys.path if Path(p or ".").resolve() != HERE]
+from study.run import run  # noqa: E402
+
+REPO = HERE.parent
+GRID = dict(
+    name="grid_5x5", R_mm=20.0,
+    base=dict(C10_MPa=0.3, t_over_R=0.15, h_over_R=1.0, gamma_J_m2=30.0),
+    grid=dict(C10_MPa=[0.1, 0.2, 0.3, 0.5, 1.0], gamma_J_m2=[10.0, 20.0, 30.0, 40.0, 50.0]),
+    interface="no_slip", mesh="default", delta_max_over_R=0.25)
+
+
+def bench(doc: dict, tmp: Path, args):
+    """(cold Outcome, warm Outcome) of one study document."""
+    path = tmp / f"{doc['name']}.yaml"
+    path.write_text(yaml.safe_dump(doc, sort_keys=False))
+    cat = tmp / f"catalogue-{doc['name']}"
+    kw = dict(catalogue_dir=cat, scheduler=args.scheduler, n_workers=args.workers,
+              progress=not args.quiet)
+    cold = run(path, tmp / "results-cold", **kw)
+    warm = run(path, tmp / "results-warm", **kw)
+    return cold, warm
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("study", nargs="?", default=str(REPO / "workflow.yaml"))
+    p.add_argument("--mesh", default=None, help="override the mesh of both studies")
+    p.add_argument("--workers", type=int, default=None, help="local cluster size")
+    p.add_argument("--scheduler", default=None, help="dask scheduler address")
+    p.add_argument("--grid-only", action="store_true", help="only the 5 x 5 grid")
+    p.add_argument("--quiet", action="store_true", help="no progress bars")
+    args = p.parse_args(argv)
+
+    docs = [] if args.grid_only else [yaml.safe_load(Path(args.study).read_text())]
+    docs.append(dict(GRID))
+    print(f"{'study':<12} {'mesh':<8} {'shells':>6} {'points':>6} {'cold s':>8} "
+          f"{'computed':>8} {'warm s':>7} {'reused':>6} {'failed':>6} {'ok pts':>6}")
+    with tempfile.TemporaryDirectory() as tmp:
+        for doc in docs:
+            if args.mesh:
+                doc["mesh"] = args.mesh
+            cold, warm = bench(doc, Path(tmp), args)
+            print(f"{doc['name']:<12} {doc.get('mesh', 'default'):<8} "
+                  f"{len(cold.plan.shells):6d} {len(cold.plan.points):6d} {cold.wall_s:8.1f} "
+                  f"{len(cold.computed):8d} {warm.wall_s:7.2f} {len(warm.reused):6d} "
+                  f"{len(cold.failed):6d} {cold.counts['ok']:6d}", flush=True)
+
+
+if __name__ == "__main__":
+    main()

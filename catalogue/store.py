@@ -1,0 +1,306 @@
+"""The catalogue folder: stored path sets and their SQLite index.
+
+    <dir>/index.sqlite                the index (WAL journal): one row per path set, one per run
+    <dir>/pathsets/<fingerprint>.nc   one file per path set (layout: catalogue.pathfile)
+
+The folder is `--catalogue DIR`, else $SHELL_ADHESION_CATALOGUE, else ./catalogue-data in
+the directory the command runs in.
+
+Trust rule: a path set is used only if its row says 'ok' and the file's sha256 matches the
+row; anything else (missing, truncated, altered file) is dropped and recomputed.  A path
+set is stored file first (atomically), row second, both under the index's write lock, so a
+process killed at any moment leaves either nothing, an orphan file no row trusts, or a
+complete entry; two studies sharing a folder serialise their writes.
+"""
+from contextlib import contextmanager
+from dataclasses import dataclass
+from datetime import datetime, timezone
+import json
+import os
+from pathlib import Path
+import socket
+import sqlite3
+import time
+
+from solver.case import PathSet
+
+from . import pathfile
+from .fingerprint import canonical_json, family, fingerprint
+
+ENV_VAR = "SHELL_ADHESION_CATALOGUE"
+DEFAULT_DIR = "catalogue-data"
+INDEX = "index.sqlite"
+TIMEOUT_S = 120.0
+_REL_TOL = 1e-9
+
+_SCHEMA = """
+CREATE TABLE IF NOT EXISTS pathsets (
+    fingerprint TEXT PRIMARY KEY,
+    family TEXT NOT NULL,
+    status TEXT NOT NULL,
+    t_over_R REAL NOT NULL,
+    h_over_R REAL NOT NULL,
+    interface TEXT NOT NULL,
+    mesh TEXT NOT NULL,
+    delta_max_over_R REAL NOT NULL,
+    gamma_max_hat REAL NOT NULL,
+    file TEXT,
+    sha256 TEXT,
+    bytes INTEGER,
+    relaxations INTEGER,
+    loading_states INTEGER,
+    newton_iterations INTEGER,
+    loading_s REAL,
+    relaxation_s REAL,
+    wall_s REAL,
+    reason TEXT,
+    version TEXT,
+    key TEXT NOT NULL,
+    stats TEXT,
+    study TEXT,
+    host TEXT,
+    pid INTEGER,
+    created TEXT NOT NULL
+);
+CREATE INDEX IF NOT EXISTS pathsets_family ON pathsets (family, status);
+CREATE TABLE IF NOT EXISTS runs (
+    id INTEGER PRIMARY KEY AUTOINCREMENT,
+    study TEXT,
+    study_file TEXT,
+    study_sha256 TEXT,
+    output TEXT,
+    started TEXT,
+    finished TEXT,
+    exit_code INTEGER,
+    computed INTEGER,
+    reused INTEGER,
+    failed INTEGER,
+    wall_s REAL,
+    host TEXT,
+    pid INTEGER,
+    version TEXT
+);
+"""
+
+# columns list_entries returns, in order
+COLUMNS = ("fingerprint", "status", "t_over_R", "h_over_R", "interface", "mesh",
+           "delta_max_over_R", "gamma_max_hat", "relaxations", "loading_states",
+           "newton_iterations", "loading_s", "relaxation_s", "wall_s", "bytes", "sha256",
+           "file", "reason", "version", "study", "host", "created")
+
+
+def default_dir() -> Path:
+    """The catalogue folder used when none is given: $SHELL_ADHESION_CATALOGUE or
+    ./catalogue-data."""
+    return Path(os.environ.get(ENV_VAR) or DEFAULT_DIR)
+
+
+def now() -> str:
+    return datetime.now(timezone.utc).isoformat(timespec="seconds")
+
+
+@dataclass(frozen=True)
+class Entry:
+    """One trusted stored path set."""
+
+    fingerprint: str
+    delta_max_over_R: float
+    gamma_max_hat: float
+    file: Path
+    sha256: str
+
+
+class Catalogue:
+    """A catalogue folder, opened (and created unless create=False) at `directory`."""
+
+    def __init__(self, directory=None, create: bool = True):
+        self.dir = Path(directory) if directory is not None else default_dir()
+        self.files = self.dir / "pathsets"
+        index = self.dir / INDEX
+        if not create and not index.exists():
+            raise FileNotFoundError(f"no catalogue at {self.dir}")
+        if create:
+            self.files.mkdir(parents=True, exist_ok=True)
+        self.db = sqlite3.connect(index, timeout=TIMEOUT_S, isolation_level=None)
+        self.db.row_factory = sqlite3.Row
+        if create:
+            self.db.execute("PRAGMA journal_mode=WAL")
+            self.db.execute("PRAGMA synchronous=FULL")
+            with self._write():
+                for statement in _SCHEMA.split(";"):
+                    if statement.strip():
+                        self.db.execute(statement)
+            self._clean_temporaries()
+        self.discarded = []         # reasons of entries found untrustworthy and dropped
+
+    def close(self):
+        self.db.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    @contextmanager
+    def _write(self):
+        """One write transaction holding the database's write lock."""
+        self.db.execute("BEGIN IMMEDIATE")
+        try:
+            yield
+        except BaseException:
+            self.db.execute("ROLLBACK")
+            raise
+        self.db.execute("COMMIT")
+
+    def _clean_temporaries(self, age_s: float = 3600.0):
+        """Remove temporary files left by killed writers (older than an hour)."""
+        for p in self.files.glob("*.tmp*"):
+            try:
+                if time.time() - p.stat().st_mtime > age_s:
+                    p.unlink()
+            except OSError:
+                pass
+
+    # -- path sets ---------------------------------------------------------------------
+
+    def candidates(self, key: dict) -> list:
+        """Rows with status 'ok' that may serve `key` (same family, at least as far),
+        nearest first."""
+        rows = self.db.execute(
+            "SELECT * FROM pathsets WHERE family = ? AND status = 'ok' "
+            "AND delta_max_over_R >= ? AND gamma_max_hat >= ? "
+            "ORDER BY gamma_max_hat, delta_max_over_R, fingerprint",
+            (family(key), key["delta_max_over_R"] * (1 - _REL_TOL),
+             key["gamma_max_hat"] * (1 - _REL_TOL))).fetchall()
+        exact = fingerprint(key)
+        return sorted(rows, key=lambda r: r["fingerprint"] != exact)
+
+    def fetch(self, key: dict):
+        """(Entry, PathSet) of the nearest trusted stored set serving `key`, or None.
+
+        Entries whose file fails its checksum or cannot be decoded are removed from the
+        index (recorded in self.discarded) so the set is recomputed.
+        """
+        for row in self.candidates(key):
+            for _ in range(3):      # the row may be replaced while we read
+                try:
+                    ps = pathfile.read(self.dir / row["file"], row["sha256"], row["fingerprint"])
+                    return Entry(row["fingerprint"], row["delta_max_over_R"],
+                                 row["gamma_max_hat"], self.dir / row["file"], row["sha256"]), ps
+                except pathfile.CorruptFile as e:
+                    fresh = self.db.execute(
+                        "SELECT * FROM pathsets WHERE fingerprint = ?", (row["fingerprint"],)
+                    ).fetchone()
+                    if (fresh is not None and fresh["status"] == "ok"
+                            and fresh["sha256"] != row["sha256"]):
+                        row = fresh
+                        continue
+                    with self._write():
+                        self.db.execute("DELETE FROM pathsets WHERE fingerprint = ? AND sha256 = ?",
+                                        (row["fingerprint"], row["sha256"]))
+                    self.discarded.append(str(e))
+                    break
+        return None
+
+    def store(self, key: dict, ps: PathSet, timings: dict = None, study: str = "") -> Entry:
+        """Store a computed path set (file, then index row) and return its entry."""
+        fp = fingerprint(key)
+        rel = f"pathsets/{fp}.nc"
+        timings = timings or {}
+        stats = ps.stats
+        with self._write():
+            sha, size = pathfile.write(self.dir / rel, ps, key, fp)
+            self._upsert(dict(
+                fingerprint=fp, family=family(key), status="ok", file=rel, sha256=sha,
+                bytes=size, relaxations=len(ps.relaxations),
+                loading_states=len(ps.loading_delta),
+                newton_iterations=int(stats.get("loading_newton_iterations", 0))
+                + int(stats.get("relaxation_newton_iterations", 0)),
+                loading_s=stats.get("loading_s"), relaxation_s=stats.get("relaxation_s"),
+                wall_s=timings.get("wall_s"), reason=None,
+                stats=json.dumps(stats, sort_keys=True, default=lambda o: o.item()),
+                **self._common(key, study)))
+        return Entry(fp, key["delta_max_over_R"], key["gamma_max_hat"], self.dir / rel, sha)
+
+    def record_failure(self, key: dict, reason: str, timings: dict = None, study: str = ""):
+        """Record that computing `key` failed (never replaces a stored 'ok' entry)."""
+        timings = timings or {}
+        row = dict(fingerprint=fingerprint(key), family=family(key), status="failed",
+                   reason=reason, wall_s=timings.get("wall_s"), **self._common(key, study))
+        with self._write():
+            old = self.db.execute("SELECT status FROM pathsets WHERE fingerprint = ?",
+                                  (row["fingerprint"],)).fetchone()
+            if old is None or old["status"] != "ok":
+                self._upsert(row)
+
+    def _common(self, key, study):
+        return dict(t_over_R=key["t_over_R"], h_over_R=key["h_over_R"],
+                    interface=key["interface"], mesh=key["mesh"],
+                    delta_max_over_R=key["delta_max_over_R"], gamma_max_hat=key["gamma_max_hat"],
+                    version=key.get("version"), key=canonical_json(key), study=study,
+                    host=socket.gethostname(), pid=os.getpid(), created=now())
+
+    def _upsert(self, row: dict):
+        names = ", ".join(row)
+        marks = ", ".join("?" for _ in row)
+        self.db.execute(f"INSERT OR REPLACE INTO pathsets ({names}) VALUES ({marks})",
+                        tuple(row.values()))
+
+    def entries(self) -> list:
+        """All path-set rows (dicts with COLUMNS), oldest first."""
+        rows = self.db.execute(
+            f"SELECT {', '.join(COLUMNS)} FROM pathsets ORDER BY created, fingerprint").fetchall()
+        return [dict(r) for r in rows]
+
+    # -- runs --------------------------------------------------------------------------
+
+    def start_run(self, study: str, study_file, study_sha256: str, output, version: str) -> int:
+        with self._write():
+            cur = self.db.execute(
+                "INSERT INTO runs (study, study_file, study_sha256, output, started, host, pid, "
+                "version) VALUES (?, ?, ?, ?, ?, ?, ?, ?)",
+                (study, str(study_file), study_sha256, str(output), now(), socket.gethostname(),
+                 os.getpid(), version))
+            return cur.lastrowid
+
+    def finish_run(self, run_id: int, exit_code: int, computed: int, reused: int, failed: int,
+                   wall_s: float):
+        with self._write():
+            self.db.execute(
+                "UPDATE runs SET finished = ?, exit_code = ?, computed = ?, reused = ?, "
+                "failed = ?, wall_s = ? WHERE id = ?",
+                (now(), exit_code, computed, reused, failed, wall_s, run_id))
+
+    def runs(self) -> list:
+        return [dict(r) for r in self.db.execute("SELECT * FROM runs ORDER BY id").fetchall()]
+
+
+def list_entries(catalogue_dir=None) -> list:
+    """Rows of the catalogue's path sets (dicts keyed by COLUMNS), oldest first.
+
+    An absent catalogue has no entries (and is not created).
+    """
+    directory = Path(catalogue_dir) if catalogue_dir is not None else default_dir()
+    if not (directory / INDEX).exists():
+        return []
+    with Catalogue(directory, create=False) as cat:
+        return cat.entries()
+
+
+def format_entries(rows) -> str:
+    """A plain-text table of list_entries() rows, one line per path set."""
+    head = (f"{'fingerprint':<12}  {'status':<6}  {'t/R':>6}  {'h/R':>6}  {'interface':<12}  "
+            f"{'mesh':<7}  {'dmax/R':>6}  {'gmax':>7}  {'paths':>5}  {'wall s':>7}  created")
+    lines = [head]
+    for r in rows:
+        wall = f"{r['wall_s']:.1f}" if r["wall_s"] is not None else "-"
+        paths = r["relaxations"] if r["relaxations"] is not None else "-"
+        line = (f"{r['fingerprint'][:12]:<12}  {r['status']:<6}  {r['t_over_R']:>6g}  "
+                f"{r['h_over_R']:>6g}  {r['interface']:<12}  {r['mesh']:<7}  "
+                f"{r['delta_max_over_R']:>6g}  {r['gamma_max_hat']:>7g}  {paths:>5}  {wall:>7}  "
+                f"{r['created']}")
+        if r["status"] != "ok" and r["reason"]:
+            line += f"  ({r['reason']})"
+        lines.append(line)
+    return "\n".join(lines)

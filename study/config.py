@@ -1,0 +1,315 @@
+"""The study file: a YAML description of a parameter study, checked before anything runs.
+
+    name: paper                 # plain file stem: results/<name>.nc
+    description: ...            # optional free text (the dataset's title)
+    R_mm: 20                    # outer radius of curvature, mm
+    base:                       # values held fixed by the sweeps
+      C10_MPa: 0.3              #   neo-Hookean constant, MPa
+      t_over_R: 0.15            #   thickness / R, 0 < t/R <= 1
+      h_over_R: 1.0             #   depth / R, t/R < h/R <= 1 (or t/R = 1, a solid cap)
+      gamma_J_m2: 30            #   work of adhesion, J/m^2
+    sweeps:                     # one factor at a time around base
+      C10_MPa: [0.1, 0.2, 0.3]
+    grid:                       # full Cartesian product (factors not listed come from base)
+      gamma_J_m2: [10, 20]
+    interface: no_slip          # or frictionless (default no_slip)
+    mesh: default               # coarse, default or fine (default default)
+    delta_max_over_R: 0.25      # deepest loading, delta / R (default 0.25)
+    outputs:
+      equilibrium_curves: true  # a, delta, P along each equilibrium curve (default true)
+      loading_curves: true      # the loading curve of each shell (default true)
+
+Besides each value's own rule, every requested shell must be a valid cap deeper than
+delta_max, and every requested gamma / (C10 R) at most solver.case.GAMMA_MAX.  The file is
+read by a SafeLoader (tags such as !!python/object are errors, never run) that also rejects
+duplicate keys.  Every problem is one StudyError whose message names its place, e.g.
+``sweeps.t_over_R[3]: 1.2 must be <= 1 (t <= R)``.
+"""
+from dataclasses import dataclass, field
+import hashlib
+import itertools
+import math
+from pathlib import Path
+import re
+
+import yaml
+
+from solver.case import GAMMA_MAX
+from solver.contact import INTERFACES
+from solver.geometry import InputError, check_cap
+from solver.scaling import gamma_hat
+
+FACTORS = ("C10_MPa", "t_over_R", "h_over_R", "gamma_J_m2")
+MESHES = ("coarse", "default", "fine")
+KEYS = ("name", "description", "R_mm", "base", "sweeps", "grid", "interface", "mesh",
+        "delta_max_over_R", "outputs")
+OUTPUTS = ("equilibrium_curves", "loading_curves")
+DELTA_MAX_LIMIT = 0.5
+_STEM = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]{0,99}")
+
+
+class StudyError(ValueError):
+    """A study file that cannot run; the message is one line naming the place."""
+
+
+@dataclass(frozen=True)
+class Outputs:
+    equilibrium_curves: bool = True
+    loading_curves: bool = True
+
+
+@dataclass(frozen=True, eq=False)
+class Study:
+    """A validated study; factor values are floats, lists are tuples."""
+
+    name: str
+    R_mm: float
+    base: dict                      # factor -> value (may be partial with a grid)
+    sweeps: dict                    # factor -> tuple of values
+    grid: dict                      # factor -> tuple of values
+    interface: str = "no_slip"
+    mesh: str = "default"
+    delta_max_over_R: float = 0.25
+    outputs: Outputs = field(default_factory=Outputs)
+    description: str = ""
+    source: str = ""                # the file it came from
+    sha256: str = ""                # of the file's bytes
+
+    def as_dict(self) -> dict:
+        """The validated study as plain data (for provenance)."""
+        return dict(name=self.name, description=self.description, R_mm=self.R_mm,
+                    base=dict(self.base), sweeps={k: list(v) for k, v in self.sweeps.items()},
+                    grid={k: list(v) for k, v in self.grid.items()}, interface=self.interface,
+                    mesh=self.mesh, delta_max_over_R=self.delta_max_over_R,
+                    outputs=dict(equilibrium_curves=self.outputs.equilibrium_curves,
+                                 loading_curves=self.outputs.loading_curves))
+
+
+# -- reading ---------------------------------------------------------------------------
+
+class _Loader(yaml.SafeLoader):
+    """SafeLoader that refuses duplicate keys."""
+
+
+def _mapping(loader, node, deep=False):
+    seen = set()
+    for key_node, _ in node.value:
+        key = loader.construct_object(key_node, deep=deep)
+        try:
+            duplicate = key in seen
+        except TypeError:
+            raise yaml.constructor.ConstructorError(
+                None, None, "a key must be a plain value", key_node.start_mark) from None
+        if duplicate:
+            raise yaml.constructor.ConstructorError(
+                None, None, f"duplicate key {key!r}", key_node.start_mark)
+        seen.add(key)
+    return loader.construct_mapping(node, deep=deep)
+
+
+_Loader.add_constructor(yaml.resolver.BaseResolver.DEFAULT_MAPPING_TAG, _mapping)
+
+
+def _yaml_message(e: yaml.YAMLError) -> str:
+    mark = getattr(e, "problem_mark", None)
+    problem = getattr(e, "problem", None) or str(e)
+    where = f"line {mark.line + 1}, column {mark.column + 1}: " if mark is not None else ""
+    return " ".join(f"yaml: {where}{problem}".split())
+
+
+def load_study(path) -> Study:
+    """Read and validate a study file; raises StudyError."""
+    path = Path(path)
+    try:
+        data = path.read_bytes()
+    except OSError as e:
+        raise StudyError(f"cannot read the study file ({e.strerror or e})") from None
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError:
+        raise StudyError("the study file is not UTF-8 text") from None
+    try:
+        doc = yaml.load(text, Loader=_Loader)
+    except yaml.YAMLError as e:
+        raise StudyError(_yaml_message(e)) from None
+    return validate(doc, source=str(path), sha256=hashlib.sha256(data).hexdigest())
+
+
+# -- validation ------------------------------------------------------------------------
+
+def _number(value, place) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        hint = ""
+        if isinstance(value, str) and re.fullmatch(r"[-+]?\d+[eE][-+]?\d+", value.strip()):
+            hint = " (YAML reads this as text: write it with a decimal point, e.g. 1.0e-3)"
+        raise StudyError(f"{place}: {value!r} must be a number{hint}")
+    if not math.isfinite(value):
+        raise StudyError(f"{place}: {value!r} must be a finite number")
+    return float(value)
+
+
+def _string(value, place) -> str:
+    if not isinstance(value, str):
+        raise StudyError(f"{place}: {value!r} must be a string")
+    return value
+
+
+def _keys(doc, place, allowed, what="key"):
+    if not isinstance(doc, dict):
+        raise StudyError(f"{place}: {_short(doc)} must be a mapping (key: value lines)")
+    for k in doc:
+        if k not in allowed:
+            raise StudyError(f"{_join(place, k)}: unknown {what} (expected one of "
+                             f"{', '.join(allowed)})")
+
+
+def _join(place, key):
+    return f"{place}.{key}" if place else str(key)
+
+
+def _short(value):
+    text = repr(value)
+    return text if len(text) <= 40 else text[:37] + "..."
+
+
+def _factor_value(factor, value, place) -> float:
+    x = _number(value, place)
+    rules = {
+        "C10_MPa": (x > 0, "must be > 0"),
+        "gamma_J_m2": (x > 0, "must be > 0"),
+        "t_over_R": (0 < x <= 1, "must be > 0 (t > 0)" if x <= 0 else "must be <= 1 (t <= R)"),
+        "h_over_R": (0 < x <= 1, "must be > 0 (h > 0)" if x <= 0 else "must be <= 1 (h <= R)"),
+    }
+    ok, rule = rules[factor]
+    if not ok:
+        raise StudyError(f"{place}: {x:g} {rule}")
+    return x
+
+
+def _factor_lists(doc, place) -> dict:
+    _keys(doc, place, FACTORS, "factor")
+    out = {}
+    for factor, values in doc.items():
+        fplace = _join(place, factor)
+        if not isinstance(values, list) or not values:
+            raise StudyError(f"{fplace}: {_short(values)} must be a non-empty list of numbers")
+        seen = {}
+        xs = []
+        for i, v in enumerate(values):
+            x = _factor_value(factor, v, f"{fplace}[{i}]")
+            if x in seen:
+                raise StudyError(f"{fplace}[{i}]: {x:g} repeats {fplace}[{seen[x]}]")
+            seen[x] = i
+            xs.append(x)
+        out[factor] = tuple(xs)
+    return out
+
+
+def validate(doc, source: str = "", sha256: str = "") -> Study:
+    """Check a loaded YAML document and return the Study; raises StudyError."""
+    if not isinstance(doc, dict):
+        raise StudyError(f"the study must be a YAML mapping (key: value lines), not "
+                         f"{_short(doc)}")
+    _keys(doc, "", KEYS)
+    if "name" not in doc:
+        raise StudyError("name: missing (required: a plain file stem for the results)")
+    name = _string(doc["name"], "name")
+    if not _STEM.fullmatch(name):
+        raise StudyError(f"name: {name!r} must be a plain file stem (letters, digits, '_', "
+                         "'-', '.'; starting with a letter or digit; at most 100 characters)")
+    description = _string(doc.get("description", ""), "description")
+    if "R_mm" not in doc:
+        raise StudyError("R_mm: missing (required: outer radius of curvature in mm)")
+    R_mm = _number(doc["R_mm"], "R_mm")
+    if not R_mm > 0:
+        raise StudyError(f"R_mm: {R_mm:g} must be > 0")
+
+    base = {}
+    if "base" in doc:
+        _keys(doc["base"], "base", FACTORS, "factor")
+        base = {f: _factor_value(f, v, f"base.{f}") for f, v in doc["base"].items()}
+    sweeps = _factor_lists(doc["sweeps"], "sweeps") if "sweeps" in doc else {}
+    grid = _factor_lists(doc["grid"], "grid") if "grid" in doc else {}
+    if "sweeps" in doc and not sweeps:
+        raise StudyError("sweeps: is empty (list the factors to vary, or remove it)")
+    if "grid" in doc and not grid:
+        raise StudyError("grid: is empty (list the factors to combine, or remove it)")
+    if sweeps or not grid:
+        why = ("sweeps vary one factor around base" if sweeps
+               else "a study without sweeps or grid computes the base point")
+        for f in FACTORS:
+            if f not in base:
+                raise StudyError(f"base.{f}: missing ({why})")
+    for f in FACTORS:
+        if grid and f not in grid and f not in base:
+            raise StudyError(f"grid.{f}: missing (give it in grid or in base)")
+
+    interface = _string(doc.get("interface", "no_slip"), "interface")
+    if interface not in INTERFACES:
+        raise StudyError(f"interface: {interface!r} must be one of {', '.join(INTERFACES)}")
+    mesh = _string(doc.get("mesh", "default"), "mesh")
+    if mesh not in MESHES:
+        raise StudyError(f"mesh: {mesh!r} must be one of {', '.join(MESHES)}")
+    delta_max = _number(doc.get("delta_max_over_R", 0.25), "delta_max_over_R")
+    if not 0 < delta_max <= DELTA_MAX_LIMIT:
+        rule = "must be > 0" if delta_max <= 0 else f"must be <= {DELTA_MAX_LIMIT:g}"
+        raise StudyError(f"delta_max_over_R: {delta_max:g} {rule}")
+
+    outputs = Outputs()
+    if "outputs" in doc:
+        _keys(doc["outputs"], "outputs", OUTPUTS)
+        flags = {}
+        for k, v in doc["outputs"].items():
+            if not isinstance(v, bool):
+                raise StudyError(f"outputs.{k}: {_short(v)} must be true or false")
+            flags[k] = v
+        outputs = Outputs(**flags)
+
+    study = Study(name, R_mm, base, sweeps, grid, interface, mesh, delta_max, outputs,
+                  description, source, sha256)
+    _check_points(study)
+    return study
+
+
+def requested(study: Study):
+    """The points a study asks for, each {factor: (value, place in the file)}, in file order.
+
+    The base point (with sweeps, or when there is no grid), each sweep value with the other
+    factors at base, and the Cartesian product of the grid (factors not in it at base).
+    Points may repeat (every sweep passes through base).
+    """
+    base = {f: (v, f"base.{f}") for f, v in study.base.items()}
+    if study.sweeps or not study.grid:
+        yield dict(base)
+    for f, values in study.sweeps.items():
+        for i, v in enumerate(values):
+            yield {**base, f: (v, f"sweeps.{f}[{i}]")}
+    if study.grid:
+        axes = [[(v, f"grid.{f}[{i}]") for i, v in enumerate(study.grid[f])] if f in study.grid
+                else [base[f]] for f in FACTORS]
+        for combo in itertools.product(*axes):
+            yield dict(zip(FACTORS, combo))
+
+
+def _check_points(study: Study):
+    """Every requested (t/R, h/R) pair must be a valid cap deeper than delta_max, and every
+    gamma / (C10 R) within what the relaxation paths are built for."""
+    seen = set()
+    for point in requested(study):
+        (t, t_place), (h, h_place) = point["t_over_R"], point["h_over_R"]
+        (C10, c_place), (gamma, g_place) = point["C10_MPa"], point["gamma_J_m2"]
+        g = gamma_hat(gamma, C10, study.R_mm)
+        if g > GAMMA_MAX * (1 + 1e-12):
+            raise StudyError(f"{g_place}: {gamma:g} J/m^2 with C10 = {C10:g} MPa ({c_place}) and "
+                             f"R = {study.R_mm:g} mm gives gamma/(C10 R) = {g:.4g}, which must be "
+                             f"<= {GAMMA_MAX:g} (range of the relaxation paths)")
+        if (t, h) in seen:
+            continue
+        seen.add((t, h))
+        try:
+            check_cap(t, h, t_place, h_place)
+        except InputError as e:
+            raise StudyError(str(e)) from None
+        if study.delta_max_over_R >= h:
+            raise StudyError(f"delta_max_over_R: {study.delta_max_over_R:g} must be < h/R "
+                             f"({h:g}, {h_place})")

@@ -1,0 +1,216 @@
+"""The study's results as one labelled xarray Dataset written as netCDF (the only module
+that knows this layout).
+
+Dimensions ``C10`` (MPa), ``t_over_R``, ``h_over_R``, ``gamma`` (J m-2): a full cube over
+the union of the study's values.  Only the requested points (the base, each sweep line,
+the grid) are evaluated; the others are NaN with ``status`` "not requested".  Units:
+lengths mm, forces N, energies mJ (N mm); P > 0 compression, delta > 0 approach.
+
+- pull-off (C10, t_over_R, h_over_R, gamma): P_star, delta_star, a_star (fixed load),
+  P_dagger, delta_dagger, a_dagger (fixed grips), a0 (P = 0), eta (eq. 3), status, reason;
+- equilibrium curves (..., point): a_eq, delta_eq, P_eq and stability flags, NaN-padded
+  along ``point`` (the points where G = gamma, increasing a);
+- loading curves (t_over_R, h_over_R, loading_state): loading_delta, loading_a, and with C10
+  (exact scaling, every C10 of the axis) loading_P and loading_U;
+- per shell (t_over_R, h_over_R): pathset_fingerprint, the catalogue entry of the FE
+  paths used, and gamma_max_hat, the largest gamma / (C10 R) they serve.
+
+``xarray.open_dataset("results/<name>.nc")`` is all a reader needs.
+"""
+from dataclasses import asdict
+from datetime import datetime, timezone
+
+import numpy as np
+import xarray as xr
+
+import solver
+from catalogue import write_atomic
+from catalogue.fingerprint import canonical_json, solver_source_sha256
+from solver import case
+from solver.scaling import energy_mJ, force_N, gamma_hat, length_mm
+from solver.theory import eta_of
+
+from .plan import LADDER, Plan
+
+DIMS = ("C10", "t_over_R", "h_over_R", "gamma")
+STATUS = ("ok", "not requested", "solver failed", "out of range")
+
+_PULL_OFF = {   # name: (units, long_name, kind) kind: force, length or 1
+    "P_star": ("N", "fixed-load pull-off force P* (most tensile stable load)", "force"),
+    "delta_star": ("mm", "rim displacement at fixed-load pull-off delta*", "length"),
+    "a_star": ("mm", "contact radius at fixed-load pull-off a*", "length"),
+    "P_dagger": ("N", "rim force at fixed-grips pull-off P_dagger", "force"),
+    "delta_dagger": ("mm", "fixed-grips pull-off displacement delta_dagger", "length"),
+    "a_dagger": ("mm", "contact radius at fixed-grips pull-off a_dagger", "length"),
+    "a0": ("mm", "contact radius at zero load a0 (NaN: not reached by the paths)", "length"),
+}
+_CURVES = {
+    "a_eq": ("mm", "contact radius a along the equilibrium curve G = gamma"),
+    "delta_eq": ("mm", "rim displacement delta along the equilibrium curve"),
+    "P_eq": ("N", "rim force P along the equilibrium curve"),
+    "stable_fixed_load": ("1", "equilibrium stable at fixed load, dP/da > 0 (1 yes, 0 no)"),
+    "stable_fixed_grips": ("1", "equilibrium stable at fixed grips, d(delta)/da > 0 (1 yes, 0 no)"),
+}
+
+
+def _attrs(units, long_name, **more):
+    return dict(units=units, long_name=long_name, **more)
+
+
+def _evaluate(ps, surface, C10, R, t, gamma):
+    """Pull-off values (dimensional) and the equilibrium curve of one point."""
+    eq, po = ps.pull_off(gamma_hat(gamma, C10, R), surface)
+    conv = dict(force=lambda x: force_N(x, C10, R), length=lambda x: length_mm(x, R))
+    values = {k: conv[kind](getattr(po, k)) for k, (_, _, kind) in _PULL_OFF.items()}
+    values["eta"] = eta_of(values["P_star"], R, t * R, C10, gamma)
+    curve = dict(a_eq=length_mm(eq.a, R), delta_eq=length_mm(eq.delta, R),
+                 P_eq=force_N(eq.P, C10, R),
+                 stable_fixed_load=np.asarray(eq.stable_fixed_load, dtype=float),
+                 stable_fixed_grips=np.asarray(eq.stable_fixed_grips, dtype=float))
+    return values, curve
+
+
+def build(plan: Plan, served: dict, failed: dict, history: str = "") -> xr.Dataset:
+    """The results cube of a planned study.
+
+    served: (t/R, h/R) -> (fingerprint, PathSet) for the shells with FE paths;
+    failed: (t/R, h/R) -> reason for the shells whose FE paths could not be computed.
+    """
+    study = plan.study
+    R = study.R_mm
+    ax = plan.axes
+    index = {f: {v: i for i, v in enumerate(ax[f])} for f in ax}
+    shape = tuple(len(ax[f]) for f in ("C10_MPa", "t_over_R", "h_over_R", "gamma_J_m2"))
+
+    surfaces, surface_errors = {}, {}
+    for th, (_, ps) in served.items():
+        try:
+            surfaces[th] = ps.surface()
+        except Exception as e:      # too few usable paths to build G at all
+            surface_errors[th] = f"energy surface: {type(e).__name__}: {e}"
+
+    status = np.full(shape, "not requested", dtype=object)
+    reason = np.full(shape, "", dtype=object)
+    results = {}
+    for C10, t, h, gamma in plan.points:
+        i = (index["C10_MPa"][C10], index["t_over_R"][t], index["h_over_R"][h],
+             index["gamma_J_m2"][gamma])
+        if (t, h) in failed:
+            status[i], reason[i] = "solver failed", failed[t, h]
+        elif (t, h) in surface_errors:
+            status[i], reason[i] = "out of range", surface_errors[t, h]
+        else:
+            try:
+                results[i] = _evaluate(served[t, h][1], surfaces[t, h], C10, R, t, gamma)
+                status[i] = "ok"
+            except ValueError as e:     # solver.energy.OutOfRange and gamma > gamma_max
+                status[i], reason[i] = "out of range", str(e)
+
+    n_point = max([len(c["a_eq"]) for _, c in results.values()], default=0)
+    n_load = max([len(ps.loading_delta) for _, ps in served.values()], default=0)
+    values = {k: np.full(shape, np.nan) for k in (*_PULL_OFF, "eta")}
+    curves = {k: np.full(shape + (n_point,), np.nan) for k in _CURVES}
+    for i, (v, c) in results.items():
+        for k, x in v.items():
+            values[k][i] = x
+        for k, x in c.items():
+            curves[k][i][:len(x)] = x
+
+    data = {k: (DIMS, values[k], _attrs(u, ln)) for k, (u, ln, _) in _PULL_OFF.items()}
+    data["eta"] = (DIMS, values["eta"], _attrs(
+        "1", "eta of eq. 3: |P*| / [gamma^4 R^4 (1 - nu^2) / (E t^2)]^(1/3)"))
+    data["status"] = (DIMS, status, _attrs(
+        "1", "evaluation status of the point", comment="one of: " + "; ".join(STATUS)))
+    data["reason"] = (DIMS, reason, _attrs("1", "why a point is not ok (empty when ok)"))
+    C10s, gammas = np.array(ax["C10_MPa"]), np.array(ax["gamma_J_m2"])
+    data["gamma_hat"] = (("C10", "gamma"), gamma_hat(gammas[None, :], C10s[:, None], R),
+                         _attrs("1", "dimensionless work of adhesion gamma / (C10 R)"))
+    if study.outputs.equilibrium_curves:
+        for k, (u, ln) in _CURVES.items():
+            data[k] = ((*DIMS, "point"), curves[k], _attrs(u, ln))
+
+    shells = (len(ax["t_over_R"]), len(ax["h_over_R"]))
+    fps = np.full(shells, "", dtype=object)
+    gmax = np.full(shells, np.nan)
+    load = {k: np.full(shells + (n_load,), np.nan) for k in ("delta", "a", "P", "U")}
+    for (t, h), (fp, ps) in served.items():
+        j = (index["t_over_R"][t], index["h_over_R"][h])
+        fps[j], gmax[j] = fp, ps.gamma_max
+        n = len(ps.loading_delta)
+        for k in load:
+            load[k][j][:n] = getattr(ps, f"loading_{k}")
+    data["pathset_fingerprint"] = (("t_over_R", "h_over_R"), fps, _attrs(
+        "1", "catalogue fingerprint of the FE path set used (empty: none)"))
+    data["gamma_max_hat"] = (("t_over_R", "h_over_R"), gmax, _attrs(
+        "1", "largest gamma / (C10 R) the shell's FE paths serve"))
+    if study.outputs.loading_curves:
+        L = ("t_over_R", "h_over_R", "loading_state")
+        data["loading_delta"] = (L, length_mm(load["delta"], R), _attrs(
+            "mm", "rim displacement delta on loading without adhesion"))
+        data["loading_a"] = (L, length_mm(load["a"], R), _attrs(
+            "mm", "contact radius a on loading without adhesion"))
+        c = C10s[:, None, None, None]
+        data["loading_P"] = (("C10", *L), force_N(load["P"][None], c, R), _attrs(
+            "N", "rim force P on loading without adhesion"))
+        data["loading_U"] = (("C10", *L), energy_mJ(load["U"][None], c, R), _attrs(
+            "mJ", "strain energy U on loading without adhesion"))
+
+    coords = {
+        "C10": ("C10", C10s, _attrs("MPa", "neo-Hookean constant C10 (shear modulus / 2)")),
+        "t_over_R": ("t_over_R", np.array(ax["t_over_R"]),
+                     _attrs("1", "shell thickness over outer radius t/R")),
+        "h_over_R": ("h_over_R", np.array(ax["h_over_R"]),
+                     _attrs("1", "cap depth over outer radius h/R")),
+        "gamma": ("gamma", gammas, _attrs("J m-2", "work of adhesion gamma")),
+        "t_mm": ("t_over_R", np.array(ax["t_over_R"]) * R, _attrs("mm", "shell thickness t")),
+        "h_mm": ("h_over_R", np.array(ax["h_over_R"]) * R, _attrs("mm", "cap depth h")),
+        "R": ((), R, _attrs("mm", "outer radius of curvature R")),
+    }
+    if study.outputs.equilibrium_curves:
+        coords["point"] = ("point", np.arange(n_point), _attrs(
+            "1", "index along the equilibrium curve (increasing contact radius)"))
+    if study.outputs.loading_curves:
+        coords["loading_state"] = ("loading_state", np.arange(n_load), _attrs(
+            "1", "index of the loading state (increasing delta)"))
+    return xr.Dataset(data, coords=coords, attrs=_global_attrs(plan, history))
+
+
+def _global_attrs(plan: Plan, history: str) -> dict:
+    study = plan.study
+    s = plan.settings
+    return dict(
+        title=study.description or f"shell-adhesion study {study.name}",
+        history=history or f"{datetime.now(timezone.utc).isoformat(timespec='seconds')} "
+                           f"shell-adhesion {solver.__version__}",
+        source=f"shell-adhesion {solver.__version__}: axisymmetric Q2/Q1 finite elements of an "
+               "incompressible neo-Hookean spherical-cap shell on a rigid plane, Maugis' "
+               "energy method",
+        Conventions="CF-1.8",
+        references="Adherence of a hyperelastic shell on a rigid planar substrate",
+        comment="Full cube over the union of the study's values; only the requested points "
+                "(base, sweep lines, grid) are evaluated, the others are NaN with status "
+                "'not requested'. P > 0 compression, delta > 0 approach.",
+        study_name=study.name, study=canonical_json(study.as_dict()),
+        study_file=study.source, study_sha256=study.sha256,
+        R_mm=study.R_mm, interface=study.interface, mesh=study.mesh,
+        delta_max_over_R=study.delta_max_over_R,
+        gamma_max_ladder=", ".join(str(m) for m in LADDER) + " x 10^k",
+        solver_version=solver.__version__, solver_source_sha256=solver_source_sha256(),
+        solver_settings=canonical_json(asdict(s)),
+        **{f"solver_{k}": int(v) if isinstance(v, bool) else v for k, v in asdict(s).items()},
+        relaxation_rule=canonical_json({"G_SAFETY": case.G_SAFETY,
+                                        "STEPS_PER_PATH": case.STEPS_PER_PATH}),
+    )
+
+
+def write(ds: xr.Dataset, path) -> None:
+    """Write the cube to `path` atomically (netCDF4, compressed floats)."""
+    enc = {v: {"zlib": True, "complevel": 4} for v in ds.data_vars
+           if ds[v].dtype.kind == "f" and ds[v].ndim > 0 and ds[v].size > 0}
+    write_atomic(ds, path, enc)
+
+
+def summary_counts(ds: xr.Dataset) -> dict:
+    """Number of points per status."""
+    values, counts = np.unique(ds["status"].values.astype(str), return_counts=True)
+    return {s: int(counts[values == s].sum()) for s in STATUS}

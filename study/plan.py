@@ -1,0 +1,97 @@
+"""The plan: which FE path sets a study needs (DESIGN.md section 3).
+
+With an incompressible neo-Hookean solid, C10, R and gamma only rescale the results, so a
+study needs one set of FE paths per distinct (t/R, h/R) (the interface, mesh and
+delta_max / R are fixed per study).  The paths of a shell must serve the largest
+gamma / (C10 R) asked of it; that value is rounded up to the ladder 1, 2, 5 x 10^k, so
+studies with nearby values share their paths.  The catalogue may serve a key with a set
+that reaches further (larger delta_max or gamma_max); `restrict` cuts such a set back to
+the requested delta_max, so the results do not depend on what else the catalogue holds.
+"""
+from dataclasses import dataclass, replace
+import math
+
+from catalogue import fingerprint, pathset_key
+from solver.case import PathSet
+from solver.path import Settings
+from solver.scaling import gamma_hat
+
+from .config import FACTORS, Study, requested
+
+LADDER = (1, 2, 5)
+_REL_TOL = 1e-9
+
+
+def gamma_max_bucket(g: float) -> float:
+    """The smallest value of the ladder 1, 2, 5 x 10^k that is >= g (to 1e-9 relative)."""
+    if not g > 0:
+        raise ValueError(f"gamma/(C10 R) = {g!r} must be > 0")
+    k = math.floor(math.log10(g)) - 1
+    while True:
+        for m in LADDER:
+            v = float(f"{m}e{k}")
+            if v >= g * (1 - _REL_TOL):
+                return v
+        k += 1
+
+
+@dataclass(frozen=True, eq=False)
+class Shell:
+    """One FE path set of the plan."""
+
+    t_over_R: float
+    h_over_R: float
+    gamma_hat_needed: float     # largest gamma / (C10 R) the study asks of this shell
+    key: dict                   # catalogue key (gamma_max_hat: the ladder value)
+    fingerprint: str
+
+    @property
+    def gamma_max_hat(self) -> float:
+        return self.key["gamma_max_hat"]
+
+
+@dataclass(frozen=True, eq=False)
+class Plan:
+    """A study reduced to its requested points and its distinct FE path sets."""
+
+    study: Study
+    axes: dict          # factor -> sorted tuple: the union of the study's values (cube axes)
+    points: tuple       # requested (C10_MPa, t_over_R, h_over_R, gamma_J_m2), sorted, distinct
+    shells: tuple       # Shell, sorted by (t/R, h/R)
+    settings: Settings
+
+    def shell(self, t_over_R, h_over_R) -> Shell:
+        for s in self.shells:
+            if (s.t_over_R, s.h_over_R) == (t_over_R, h_over_R):
+                return s
+        raise KeyError((t_over_R, h_over_R))
+
+
+def make_plan(study: Study, settings: Settings = Settings()) -> Plan:
+    """The distinct path sets of a validated study, with their catalogue keys."""
+    points = sorted({tuple(p[f][0] for f in FACTORS) for p in requested(study)})
+    axes = {f: tuple(sorted({p[i] for p in points})) for i, f in enumerate(FACTORS)}
+    need = {}
+    for C10, t, h, gamma in points:
+        g = gamma_hat(gamma, C10, study.R_mm)
+        need[t, h] = max(need.get((t, h), 0.0), g)
+    shells = []
+    for (t, h), g in sorted(need.items()):
+        key = pathset_key(t, h, study.interface, study.mesh, study.delta_max_over_R,
+                          gamma_max_bucket(g), settings)
+        shells.append(Shell(t, h, g, key, fingerprint(key)))
+    return Plan(study, axes, tuple(points), tuple(shells), settings)
+
+
+def restrict(ps: PathSet, delta_max: float) -> PathSet:
+    """The part of a path set a run to `delta_max` computes: loading states and
+    relaxation starts with delta <= delta_max (identical to a run that stops there,
+    apart from that run's last, clipped loading step)."""
+    if ps.delta_max <= delta_max * (1 + _REL_TOL):
+        return ps
+    lim = delta_max * (1 + _REL_TOL)
+    keep = ps.loading_delta <= lim
+    return replace(ps, delta_max=delta_max, loading_delta=ps.loading_delta[keep],
+                   loading_P=ps.loading_P[keep], loading_a=ps.loading_a[keep],
+                   loading_U=ps.loading_U[keep], loading_joined=ps.loading_joined[keep],
+                   relaxations=tuple(r for r in ps.relaxations if r.delta[0] <= lim))

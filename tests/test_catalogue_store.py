@@ -1,0 +1,143 @@
+"""The catalogue: stored path sets round-trip exactly, serve what they cover, and are never
+trusted when their file is damaged; concurrent writers do not corrupt it."""
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import fields
+import functools
+import multiprocessing
+import sqlite3
+
+import numpy as np
+import pytest
+
+from catalogue import Catalogue, format_entries, list_entries, pathset_key
+from solver.case import PathSet, Relaxation, solve_paths
+
+SHELL = (0.15, 1.0, "no_slip", "coarse", 0.1, 0.01)
+
+
+@functools.lru_cache(maxsize=None)
+def pathset():
+    return solve_paths(*SHELL)[0]
+
+
+def key(**change):
+    k = pathset_key(*SHELL)
+    return dict(k, **change)
+
+
+def assert_same_pathset(a: PathSet, b: PathSet):
+    for f in fields(PathSet):
+        x, y = getattr(a, f.name), getattr(b, f.name)
+        if f.name == "relaxations":
+            assert len(x) == len(y)
+            for r, s in zip(x, y):
+                for g in fields(Relaxation):
+                    np.testing.assert_array_equal(getattr(r, g.name), getattr(s, g.name))
+        elif isinstance(x, np.ndarray):
+            np.testing.assert_array_equal(x, y)
+        else:
+            assert x == y, f.name
+
+
+def test_store_and_fetch_round_trip(tmp_path):
+    ps = pathset()
+    with Catalogue(tmp_path / "cat") as cat:
+        entry = cat.store(key(), ps, {"wall_s": 1.0}, study="t")
+        hit = cat.fetch(key())
+    assert hit is not None and hit[0].fingerprint == entry.fingerprint
+    assert_same_pathset(ps, hit[1])
+    g = 0.005
+    assert hit[1].pull_off(g)[1] == ps.pull_off(g)[1]
+    assert not list((tmp_path / "cat" / "pathsets").glob("*.tmp*"))
+    rows = list_entries(tmp_path / "cat")
+    assert [r["status"] for r in rows] == ["ok"]
+    assert rows[0]["relaxations"] == len(ps.relaxations) and rows[0]["sha256"] == entry.sha256
+    assert "0.15" in format_entries(rows)
+
+
+def test_a_set_reaching_further_serves(tmp_path):
+    with Catalogue(tmp_path) as cat:
+        stored = cat.store(key(), pathset())
+        assert cat.fetch(key(gamma_max_hat=0.005))[0].fingerprint == stored.fingerprint
+        assert cat.fetch(key(delta_max_over_R=0.05))[0].fingerprint == stored.fingerprint
+        assert cat.fetch(key(gamma_max_hat=0.02)) is None
+        assert cat.fetch(key(delta_max_over_R=0.2)) is None
+        assert cat.fetch(key(interface="frictionless")) is None
+        assert cat.fetch(key(h_over_R=0.9)) is None
+        exact = cat.store(key(gamma_max_hat=0.005), pathset())
+        assert cat.fetch(key(gamma_max_hat=0.005))[0].fingerprint == exact.fingerprint
+
+
+@pytest.mark.parametrize("damage", ["truncate", "flip", "delete", "garbage"])
+def test_damaged_file_is_not_trusted(tmp_path, damage):
+    with Catalogue(tmp_path) as cat:
+        entry = cat.store(key(), pathset())
+        data = entry.file.read_bytes()
+        if damage == "truncate":
+            entry.file.write_bytes(data[: len(data) // 2])
+        elif damage == "flip":
+            i = len(data) // 2
+            entry.file.write_bytes(data[:i] + bytes([data[i] ^ 0xFF]) + data[i + 1:])
+        elif damage == "delete":
+            entry.file.unlink()
+        else:
+            entry.file.write_bytes(b"not a netCDF file")
+        assert cat.fetch(key()) is None
+        assert len(cat.discarded) == 1
+        assert list_entries(tmp_path) == []          # the untrusted row is gone
+        cat.store(key(), pathset())                  # and a recomputed set replaces it
+        assert_same_pathset(cat.fetch(key())[1], pathset())
+
+
+def test_file_without_row_is_not_trusted(tmp_path):
+    """A writer killed between the file and the index row leaves nothing a rerun trusts."""
+    with Catalogue(tmp_path / "a") as a:
+        entry = a.store(key(), pathset())
+    with Catalogue(tmp_path / "b") as b:
+        (b.files / entry.file.name).write_bytes(entry.file.read_bytes())
+        assert b.fetch(key()) is None
+
+
+def test_failure_never_replaces_a_good_entry(tmp_path):
+    with Catalogue(tmp_path) as cat:
+        cat.record_failure(key(), "loading: ConvergenceError: test")
+        assert [r["status"] for r in cat.entries()] == ["failed"]
+        assert cat.fetch(key()) is None
+        cat.store(key(), pathset())
+        cat.record_failure(key(), "later failure")
+        assert [r["status"] for r in cat.entries()] == ["ok"]
+
+
+def test_list_entries_of_absent_catalogue(tmp_path):
+    assert list_entries(tmp_path / "none") == []
+    assert not (tmp_path / "none").exists()
+
+
+def test_index_is_wal(tmp_path):
+    Catalogue(tmp_path).close()
+    db = sqlite3.connect(tmp_path / "index.sqlite")
+    assert db.execute("PRAGMA journal_mode").fetchone()[0] == "wal"
+    db.close()
+
+
+def _store_many(directory, ps, t_values):
+    with Catalogue(directory) as cat:
+        for t in t_values:
+            cat.store(key(t_over_R=t), ps, study=f"writer {t_values[0]}")
+    return len(t_values)
+
+
+def test_concurrent_writers(tmp_path):
+    ps = pathset()
+    ts = [[0.11, 0.12, 0.13], [0.21, 0.22, 0.23], [0.11, 0.12, 0.31]]   # writers 1, 3 overlap
+    ctx = multiprocessing.get_context("spawn")
+    with ProcessPoolExecutor(3, mp_context=ctx) as pool:
+        assert sum(pool.map(_store_many, [tmp_path] * 3, [ps] * 3, ts)) == 9
+    rows = list_entries(tmp_path)
+    assert len(rows) == 7 and all(r["status"] == "ok" for r in rows)
+    with Catalogue(tmp_path) as cat:
+        for t in sorted({t for group in ts for t in group}):
+            hit = cat.fetch(key(t_over_R=t))
+            assert hit is not None
+            assert_same_pathset(hit[1], ps)
+        assert cat.discarded == []

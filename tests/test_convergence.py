@@ -1,0 +1,30 @@
+"""Validation 6: mesh convergence of the headline numbers of the base shell, from the
+default mesh to one uniform refinement (every size halved).  Tolerance 0.5 %.
+
+The pull-off numbers need only the contact radii around the pull-off points, so their
+paths are loaded to delta = 0.1 R (a up to about 6 mm; a0 = 4.9 mm); P(5 mm) comes from
+the loading curve alone."""
+import pytest
+
+from solver.case import solve_loading
+
+from conftest import GAMMA_HAT, base_case
+from test_paper import loading_P
+
+
+@pytest.fixture(scope="module")
+def meshes():
+    out = {}
+    for mesh in ("default", "fine"):
+        ps, _, _ = base_case(mesh, "no_slip", 0.006, 0.1)
+        _, po = ps.pull_off(GAMMA_HAT)
+        _, loading = solve_loading(0.15, 1.0, "no_slip", mesh, 0.25)
+        out[mesh] = dict(P5=loading_P(loading.states, 0.25), P_star=po.P_star,
+                         delta_dagger=po.delta_dagger)
+    print("mesh convergence (dimensionless):", out)
+    return out
+
+
+@pytest.mark.parametrize("name", ["P5", "P_star", "delta_dagger"])
+def test_default_to_fine_within_half_percent(meshes, name):
+    assert meshes["default"][name] == pytest.approx(meshes["fine"][name], rel=5e-3)

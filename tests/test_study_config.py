@@ -1,0 +1,123 @@
+"""Study files: every bad file gives one line naming its place, exit code 2, nothing written."""
+from pathlib import Path
+
+import pytest
+
+from study.config import StudyError, load_study
+from study.plan import make_plan
+from study.run import run_study
+
+REPO = Path(__file__).resolve().parents[1]
+
+GOOD = """\
+name: tiny
+R_mm: 20
+base: {C10_MPa: 0.3, t_over_R: 0.15, h_over_R: 1.0, gamma_J_m2: 30}
+sweeps:
+  C10_MPa: [0.2, 0.3]
+  t_over_R: [0.15, 0.2]
+mesh: coarse
+delta_max_over_R: 0.1
+"""
+
+PWNED = "/tmp/shell-adhesion-yaml-tag-was-executed"
+
+# (name, file text, text the one-line message must contain)
+BAD = [
+    ("unknown key", GOOD + "mesh_size: 3\n", "mesh_size: unknown key"),
+    ("unknown factor", GOOD + "grid:\n  E_MPa: [1.0]\n", "grid.E_MPa: unknown factor"),
+    ("wrong type", GOOD.replace("R_mm: 20", "R_mm: twenty"), "R_mm: 'twenty' must be a number"),
+    ("bool as number", GOOD.replace("R_mm: 20", "R_mm: true"), "R_mm: True must be a number"),
+    ("exponent read as text", GOOD.replace("R_mm: 20", "R_mm: 2e1"),
+     "R_mm: '2e1' must be a number (YAML reads this as text"),
+    ("t > R", GOOD.replace("t_over_R: [0.15, 0.2]", "t_over_R: [0.15, 0.2, 0.3, 1.2]"),
+     "sweeps.t_over_R[3]: 1.2 must be <= 1 (t <= R)"),
+    ("h <= t", GOOD + "grid:\n  h_over_R: [0.5, 0.1]\n",
+     "grid.h_over_R[1]: 0.1 must be > t"),
+    ("C10 <= 0", GOOD.replace("C10_MPa: [0.2, 0.3]", "C10_MPa: [0.2, -0.3]"),
+     "sweeps.C10_MPa[1]: -0.3 must be > 0"),
+    ("repeated value", GOOD.replace("C10_MPa: [0.2, 0.3]", "C10_MPa: [0.2, 0.3, 0.2]"),
+     "sweeps.C10_MPa[2]: 0.2 repeats sweeps.C10_MPa[0]"),
+    ("empty list", GOOD.replace("C10_MPa: [0.2, 0.3]", "C10_MPa: []"),
+     "sweeps.C10_MPa: [] must be a non-empty list of numbers"),
+    ("bad interface", GOOD + "interface: sticky\n",
+     "interface: 'sticky' must be one of no_slip, frictionless"),
+    ("bad mesh", GOOD.replace("mesh: coarse", "mesh: ultra"),
+     "mesh: 'ultra' must be one of coarse, default, fine"),
+    ("name with a path", GOOD.replace("name: tiny", "name: ../escape"),
+     "name: '../escape' must be a plain file stem"),
+    ("absolute name", GOOD.replace("name: tiny", "name: /tmp/escape"),
+     "name: '/tmp/escape' must be a plain file stem"),
+    ("missing name", GOOD.replace("name: tiny\n", ""), "name: missing"),
+    ("sweeps without a base factor",
+     GOOD.replace("base: {C10_MPa: 0.3, t_over_R: 0.15, h_over_R: 1.0, gamma_J_m2: 30}",
+                  "base: {C10_MPa: 0.3, t_over_R: 0.15, h_over_R: 1.0}"),
+     "base.gamma_J_m2: missing"),
+    ("gamma beyond the paths", GOOD + "grid:\n  gamma_J_m2: [30, 1000]\n",
+     "grid.gamma_J_m2[1]: 1000 J/m^2 with C10 = 0.3 MPa (base.C10_MPa)"),
+    ("delta_max too large", GOOD.replace("delta_max_over_R: 0.1", "delta_max_over_R: 0.6"),
+     "delta_max_over_R: 0.6 must be <= 0.5"),
+    ("delta_max beyond a shallow cap",
+     GOOD.replace("delta_max_over_R: 0.1", "delta_max_over_R: 0.3")
+     + "grid:\n  h_over_R: [0.25]\n  t_over_R: [0.15]\n",
+     "delta_max_over_R: 0.3 must be < h/R (0.25, grid.h_over_R[0])"),
+    ("outputs flag", GOOD + "outputs:\n  loading_curves: 3\n",
+     "outputs.loading_curves: 3 must be true or false"),
+    ("duplicate key", GOOD + "R_mm: 25\n", "duplicate key 'R_mm'"),
+    ("python object tag",
+     f"name: !!python/object/apply:os.system ['touch {PWNED}']\nR_mm: 20\n",
+     "could not determine a constructor for the tag"),
+    ("yaml syntax", GOOD + "grid: [unclosed\n", "yaml: line"),
+    ("not a mapping", "- 1\n- 2\n", "the study must be a YAML mapping"),
+    ("base not a mapping", GOOD.replace(
+        "base: {C10_MPa: 0.3, t_over_R: 0.15, h_over_R: 1.0, gamma_J_m2: 30}", "base: 3"),
+     "base: 3 must be a mapping"),
+]
+
+
+@pytest.mark.parametrize("text, expected", [b[1:] for b in BAD], ids=[b[0] for b in BAD])
+def test_bad_study_exit_2_one_line_nothing_written(tmp_path, capsys, text, expected):
+    path = tmp_path / "study.yaml"
+    path.write_text(text)
+    out, cat = tmp_path / "results", tmp_path / "catalogue"
+    code = run_study(path, out, catalogue_dir=cat, progress=False)
+    err = capsys.readouterr().err
+    assert code == 2
+    assert expected in err
+    assert err.strip().count("\n") == 0, err
+    assert not out.exists() and not cat.exists()
+    assert not Path(PWNED).exists()
+
+
+def test_missing_file(tmp_path, capsys):
+    assert run_study(tmp_path / "nope.yaml", tmp_path / "out", catalogue_dir=tmp_path / "c") == 2
+    assert "cannot read the study file" in capsys.readouterr().err
+    assert not (tmp_path / "out").exists()
+
+
+def test_good_study_values(tmp_path):
+    path = tmp_path / "s.yaml"
+    path.write_text(GOOD)
+    s = load_study(path)
+    assert s.name == "tiny" and s.R_mm == 20.0 and s.mesh == "coarse"
+    assert s.interface == "no_slip" and s.outputs.loading_curves
+    assert s.sweeps == {"C10_MPa": (0.2, 0.3), "t_over_R": (0.15, 0.2)}
+    assert len(s.sha256) == 64
+
+
+def test_workflow_is_the_papers_study():
+    s = load_study(REPO / "workflow.yaml")
+    assert s.R_mm == 20 and s.interface == "no_slip" and s.mesh == "default"
+    assert s.base == dict(C10_MPa=0.3, t_over_R=0.15, h_over_R=1.0, gamma_J_m2=30)
+    assert s.sweeps["t_over_R"] == (0.1, 0.125, 0.15, 0.175, 0.225, 0.5, 1.0)
+    plan = make_plan(s)
+    assert len(plan.shells) == 11          # DESIGN.md section 4
+    assert len(plan.points) == 19          # base + 4 + 6 + 4 + 4 sweep values off base
+    assert {f: len(v) for f, v in plan.axes.items()} == dict(
+        C10_MPa=5, t_over_R=7, h_over_R=5, gamma_J_m2=5)
+
+
+def test_error_is_a_value_error():
+    with pytest.raises(StudyError, match=r"^R_mm: -1 must be > 0$"):
+        from study.config import validate
+        validate(dict(name="x", R_mm=-1))

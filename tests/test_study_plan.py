@@ -1,0 +1,59 @@
+"""The plan: a study reduces to its distinct FE path sets (DESIGN.md section 3)."""
+import pytest
+
+from catalogue import canonical_json, family, fingerprint, pathset_key
+from study.config import validate
+from study.plan import gamma_max_bucket, make_plan
+
+BASE = dict(C10_MPa=0.3, t_over_R=0.15, h_over_R=1.0, gamma_J_m2=30)
+
+
+def study(**doc):
+    return validate(dict(dict(name="s", R_mm=20, mesh="coarse", delta_max_over_R=0.1), **doc))
+
+
+def test_c10_and_gamma_grid_is_one_path_set():
+    s = study(base=BASE, grid=dict(C10_MPa=[0.2, 0.25, 0.3], gamma_J_m2=[20, 25, 30]))
+    plan = make_plan(s)
+    assert len(plan.points) == 9
+    assert len(plan.shells) == 1
+    shell = plan.shells[0]
+    assert shell.gamma_hat_needed == pytest.approx(30e-3 / (0.2 * 20))      # 0.0075
+    assert shell.gamma_max_hat == 0.01
+
+
+def test_sweeps_full_cube_axes_and_points():
+    s = study(base=BASE, sweeps=dict(t_over_R=[0.1, 0.15, 0.2], gamma_J_m2=[10, 30]))
+    plan = make_plan(s)
+    assert plan.axes["t_over_R"] == (0.1, 0.15, 0.2)
+    assert plan.axes["gamma_J_m2"] == (10.0, 30.0)
+    assert len(plan.points) == 4            # base, t 0.1, t 0.2, gamma 10
+    assert (0.3, 0.1, 1.0, 10.0) not in plan.points      # off the sweep lines
+    assert [(x.t_over_R, x.h_over_R) for x in plan.shells] == [(0.1, 1.0), (0.15, 1.0), (0.2, 1.0)]
+
+
+def test_gamma_ladder_rounds_up():
+    assert gamma_max_bucket(0.005) == 0.005
+    assert gamma_max_bucket(30e-3 / (0.3 * 20)) == 0.005        # 0.005 up to rounding
+    assert gamma_max_bucket(0.0050001) == 0.01
+    assert gamma_max_bucket(0.011) == 0.02
+    assert gamma_max_bucket(0.021) == 0.05
+    assert gamma_max_bucket(1.5e-4) == 2e-4
+
+
+def test_nearby_studies_share_keys():
+    a = make_plan(study(base=BASE, grid=dict(gamma_J_m2=[40, 50])))          # 0.0083
+    b = make_plan(study(base=dict(BASE, gamma_J_m2=35)))                      # 0.0058
+    assert a.shells[0].fingerprint == b.shells[0].fingerprint
+
+
+def test_fingerprint_is_canonical():
+    k = pathset_key(0.15, 1.0, "no_slip", "coarse", 0.1, 0.01)
+    shuffled = dict(reversed(list(k.items())))
+    assert fingerprint(shuffled) == fingerprint(k)
+    assert fingerprint(dict(k, t_over_R=0.1 + 0.05)) == fingerprint(k)      # 0.15000000000000002
+    assert fingerprint(dict(k, t_over_R=0.151)) != fingerprint(k)
+    assert fingerprint(dict(k, interface="frictionless")) != fingerprint(k)
+    assert family(dict(k, gamma_max_hat=0.02)) == family(k)
+    assert family(dict(k, mesh="fine")) != family(k)
+    assert '"version"' in canonical_json(k) and '"settings"' in canonical_json(k)

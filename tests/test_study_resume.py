@@ -1,0 +1,103 @@
+"""A run killed with SIGKILL after its first path set is stored loses nothing finished: the
+rerun reuses that set, computes the rest and writes the same dataset as an uninterrupted run."""
+import os
+from pathlib import Path
+import signal
+import sqlite3
+import subprocess
+import sys
+import time
+
+import xarray as xr
+
+from catalogue import Catalogue, list_entries
+from study.run import run, summary
+
+REPO = Path(__file__).resolve().parents[1]
+ENV = dict(os.environ, PYTHONPATH=os.pathsep.join(
+    p for p in (str(REPO), os.environ.get("PYTHONPATH")) if p))
+
+# two shells (a thin shell, then a costlier solid cap) on one worker: dask runs the tasks
+# in submission order, so the thin shell is stored seconds before the solid one
+STUDY = """\
+name: resume
+R_mm: 20
+grid:
+  C10_MPa: [0.2]
+  t_over_R: [0.15, 1.0]
+  h_over_R: [0.5]
+  gamma_J_m2: [25, 30]
+mesh: coarse
+delta_max_over_R: 0.1
+"""
+
+
+def ok_rows(cat):
+    try:
+        return [r for r in list_entries(cat) if r["status"] == "ok"]
+    except sqlite3.Error:       # the index is still being created
+        return []
+
+
+def group_alive(pgid) -> bool:
+    try:
+        os.killpg(pgid, 0)
+        return True
+    except ProcessLookupError:
+        return False
+
+
+def load(path):
+    with xr.open_dataset(path) as ds:
+        ds = ds.load()
+    ds.attrs.pop("history")
+    return ds
+
+
+def test_killed_run_resumes(tmp_path):
+    study = tmp_path / "resume.yaml"
+    study.write_text(STUDY)
+    cat, out = tmp_path / "cat", tmp_path / "results"
+    log = open(tmp_path / "run.log", "w")
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "study.run", str(study), "--out", str(out), "--catalogue", str(cat),
+         "--workers", "1"],
+        cwd=REPO, env=ENV, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
+    try:
+        deadline = time.time() + 180
+        while not ok_rows(cat):
+            assert proc.poll() is None, "the run ended before it was killed:\n" + \
+                (tmp_path / "run.log").read_text()
+            assert time.time() < deadline, "no path set was stored in time"
+            time.sleep(0.05)
+        os.killpg(proc.pid, signal.SIGKILL)      # the client, its cluster and workers
+        proc.wait(timeout=30)
+    finally:
+        if group_alive(proc.pid):
+            os.killpg(proc.pid, signal.SIGKILL)
+        log.close()
+    deadline = time.time() + 30
+    while group_alive(proc.pid) and time.time() < deadline:
+        time.sleep(0.1)
+    assert not group_alive(proc.pid)
+
+    stored = ok_rows(cat)
+    assert len(stored) == 1, "the kill came too late to interrupt the second path set"
+    assert not (out / "resume.nc").exists()
+    assert "FE tasks" in (tmp_path / "run.log").read_text()        # the progress bar
+    with Catalogue(cat) as c:
+        killed = c.runs()[-1]
+    assert killed["finished"] is None                               # the run never ended
+
+    again = run(study, out, catalogue_dir=cat, progress=False)
+    assert again.exit_code == 0
+    assert again.reused == [stored[0]["fingerprint"]] and len(again.computed) == 1
+    assert again.discarded == []
+    assert "2 needed, 1 computed, 1 reused, 0 failed" in summary(again)
+
+    reference = run(study, tmp_path / "reference", catalogue_dir=tmp_path / "cat2",
+                    progress=False)
+    assert reference.exit_code == 0 and len(reference.computed) == 2
+    resumed, cold = load(again.output), load(reference.output)
+    assert (resumed["status"] == "ok").all()
+    xr.testing.assert_identical(resumed, cold)

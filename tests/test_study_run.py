@@ -1,0 +1,248 @@
+"""Studies end to end on dask with the real solver (coarse mesh): the local cluster and an
+external scheduler give the same numbers, the catalogue serves every rerun and every new C10
+or gamma, failures are recorded, and the cube round-trips through netCDF."""
+import json
+import os
+from pathlib import Path
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from catalogue import Catalogue, list_entries
+from solver.path import Settings
+from study import dataset
+from study.plan import restrict
+from study.run import run, run_study, summary
+
+REPO = Path(__file__).resolve().parents[1]
+ENV = dict(os.environ, PYTHONPATH=os.pathsep.join(
+    p for p in (str(REPO), os.environ.get("PYTHONPATH")) if p))
+
+# one shell, 3 C10 x 3 gamma: gamma/(C10 R) from 0.0033 to 0.0075, one set of FE paths
+TINY = """\
+name: tiny
+R_mm: 20
+base: {C10_MPa: 0.3, t_over_R: 0.15, h_over_R: 1.0, gamma_J_m2: 30}
+grid:
+  C10_MPa: [0.2, 0.25, 0.3]
+  gamma_J_m2: [20, 25, 30]
+mesh: coarse
+delta_max_over_R: 0.1
+"""
+UNREACHABLE = "tcp://127.0.0.1:9"       # a run that must compute nothing never connects
+
+
+def write(path, text):
+    path.write_text(text)
+    return path
+
+
+def same_results(a: xr.Dataset, b: xr.Dataset):
+    """Identical data, coordinates and attributes, apart from the run's history line."""
+    a, b = a.copy(), b.copy()
+    for ds in (a, b):
+        ds.attrs.pop("history")
+    xr.testing.assert_identical(a, b)
+
+
+def load(path) -> xr.Dataset:
+    with xr.open_dataset(path) as ds:
+        return ds.load()
+
+
+@pytest.fixture(scope="module")
+def local(tmp_path_factory):
+    """The tiny study, cold, on the default local cluster."""
+    d = tmp_path_factory.mktemp("local")
+    study = write(d / "tiny.yaml", TINY)
+    outcome = run(study, d / "results", catalogue_dir=d / "cat", progress=False)
+    return outcome, study, d / "cat", load(outcome.output)
+
+
+@pytest.fixture(scope="module")
+def scheduler(tmp_path_factory):
+    """A dask scheduler and a worker (2 processes) started as separate processes."""
+    d = tmp_path_factory.mktemp("dask")
+    sf = d / "scheduler.json"
+    procs = []
+    log = open(d / "dask.log", "w")
+
+    def start(*args):
+        procs.append(subprocess.Popen([sys.executable, "-m", "dask", *args], cwd=d, env=ENV,
+                                      stdout=log, stderr=subprocess.STDOUT,
+                                      start_new_session=True))
+    try:
+        start("scheduler", "--host", "127.0.0.1", "--port", "0", "--no-dashboard",
+              "--scheduler-file", str(sf))
+        deadline = time.time() + 60
+        address = None
+        while address is None:
+            assert time.time() < deadline, "the dask scheduler did not start"
+            assert procs[0].poll() is None, (d / "dask.log").read_text()
+            try:
+                address = json.loads(sf.read_text())["address"]
+            except (OSError, ValueError, KeyError):
+                time.sleep(0.1)
+        start("worker", "--scheduler-file", str(sf), "--nworkers", "2", "--nthreads", "1",
+              "--no-dashboard", "--host", "127.0.0.1")
+        from distributed import Client
+        with Client(address, timeout="30s") as c:
+            c.wait_for_workers(2, timeout=60)
+        yield address
+    finally:
+        for p in reversed(procs):
+            try:
+                os.killpg(p.pid, signal.SIGTERM)
+                p.wait(timeout=20)
+            except subprocess.TimeoutExpired:
+                os.killpg(p.pid, signal.SIGKILL)
+                p.wait()
+            except ProcessLookupError:
+                pass
+        log.close()
+
+
+def test_local_cluster_solves_once(local):
+    outcome, _, cat, ds = local
+    assert outcome.exit_code == 0
+    assert len(outcome.plan.shells) == 1 and len(outcome.computed) == 1
+    assert outcome.reused == [] and outcome.failed == {}
+    assert outcome.counts == {"ok": 9, "not requested": 0, "solver failed": 0, "out of range": 0}
+    assert (ds["status"] == "ok").all()
+    P = ds["P_star"].values
+    assert np.isfinite(P).all() and (P < 0).all()
+    assert np.isfinite(ds["eta"].values).all()
+    assert [r["status"] for r in list_entries(cat)] == ["ok"]
+
+
+def test_external_scheduler_same_numbers(local, scheduler, tmp_path):
+    outcome, study, _, ds = local
+    other = run(study, tmp_path / "results", scheduler=scheduler, catalogue_dir=tmp_path / "cat",
+                progress=False)
+    assert other.exit_code == 0 and other.computed == outcome.computed
+    same_results(load(other.output), ds)
+
+
+def test_rerun_reads_everything_from_the_catalogue(local, tmp_path):
+    outcome, study, cat, ds = local
+    again = run(study, tmp_path / "results", scheduler=UNREACHABLE, catalogue_dir=cat,
+                progress=False)
+    assert again.exit_code == 0
+    assert again.computed == [] and again.reused == outcome.computed
+    same_results(load(again.output), ds)
+
+
+def test_new_c10_and_gamma_compute_nothing(local, tmp_path):
+    _, _, cat, ds = local
+    study = write(tmp_path / "more.yaml", TINY.replace("[0.2, 0.25, 0.3]", "[0.2, 0.22, 0.25, 0.3]")
+                  .replace("[20, 25, 30]", "[20, 25, 27, 30]"))
+    more = run(study, tmp_path / "results", scheduler=UNREACHABLE, catalogue_dir=cat,
+               progress=False)
+    assert more.exit_code == 0 and more.computed == [] and len(more.reused) == 1
+    assert more.counts["ok"] == 16
+    big = load(more.output)
+    old = big.sel(C10=ds["C10"], gamma=ds["gamma"])
+    for v in ("P_star", "delta_star", "a_star", "P_dagger", "a0", "eta", "a_eq", "P_eq"):
+        xr.testing.assert_identical(old[v], ds[v])
+
+
+def test_c10_scales_forces_exactly(local):
+    """DESIGN.md section 3: same gamma / (C10 R), same paths, P scaled by C10."""
+    ds = local[3]
+    a = ds.sel(C10=0.2, gamma=20.0)           # gamma / (C10 R) = 0.005
+    b = ds.sel(C10=0.3, gamma=30.0)           # gamma / (C10 R) = 0.005
+    np.testing.assert_allclose(b["P_star"], 1.5 * a["P_star"], rtol=1e-9)
+    np.testing.assert_allclose(b["P_eq"], 1.5 * a["P_eq"], rtol=1e-9)
+    np.testing.assert_allclose(b["a_star"], a["a_star"], rtol=1e-9)
+    np.testing.assert_allclose(ds["loading_P"].sel(C10=0.3), 1.5 * ds["loading_P"].sel(C10=0.2),
+                               rtol=1e-12)
+
+
+def test_sweeps_leave_unrequested_points_empty(local, tmp_path):
+    _, _, cat, _ = local
+    study = write(tmp_path / "sweep.yaml", TINY.replace(
+        "grid:\n  C10_MPa: [0.2, 0.25, 0.3]\n  gamma_J_m2: [20, 25, 30]",
+        "sweeps:\n  C10_MPa: [0.2, 0.3]\n  gamma_J_m2: [20, 30]"
+    ).replace("name: tiny", "name: sweep"))
+    out = run(study, tmp_path / "results", scheduler=UNREACHABLE, catalogue_dir=cat,
+              progress=False)
+    ds = load(out.output)
+    assert out.computed == [] and out.counts["ok"] == 3 and out.counts["not requested"] == 1
+    off = ds.sel(C10=0.2, gamma=20.0)
+    assert (off["status"] == "not requested").all()
+    assert np.isnan(off["P_star"]).all() and np.isnan(off["a_eq"]).all()
+
+
+def test_point_outside_the_paths_is_recorded(local, tmp_path, capsys):
+    """C10 = 1000 MPa gives gamma / (C10 R) = 1e-6: a* is below the first relaxation paths."""
+    _, _, cat, _ = local
+    study = write(tmp_path / "stiff.yaml", TINY.replace("[0.2, 0.25, 0.3]", "[0.2, 1000.0]"))
+    code = run_study(study, tmp_path / "results", scheduler=UNREACHABLE, catalogue_dir=cat,
+                     progress=False)
+    assert code == 1
+    text = capsys.readouterr().out
+    assert "FE path sets: 1 needed, 0 computed, 1 reused, 0 failed" in text
+    assert "3 out of range" in text
+    ds = load(tmp_path / "results" / "tiny.nc")
+    stiff = ds.sel(C10=1000.0)
+    assert (stiff["status"] == "out of range").all() and np.isnan(stiff["P_star"]).all()
+    assert all("gamma/(C10 R)" in r for r in stiff["reason"].values.ravel())
+    assert (ds.sel(C10=0.2)["status"] == "ok").all()
+
+
+def test_solver_failure_is_recorded(scheduler, tmp_path):
+    """Newton limited to one iteration cannot converge: the shell fails, the run goes on."""
+    study = write(tmp_path / "fail.yaml", TINY)
+    out = run(study, tmp_path / "results", scheduler=scheduler, catalogue_dir=tmp_path / "cat",
+              progress=False, settings=Settings(max_iter=1))
+    assert out.exit_code == 1 and len(out.failed) == 1
+    assert "ConvergenceError" in next(iter(out.failed.values()))
+    ds = load(out.output)
+    assert (ds["status"] == "solver failed").all() and np.isnan(ds["P_star"]).all()
+    assert "ConvergenceError" in str(ds["reason"].values.ravel()[0])
+    rows = list_entries(tmp_path / "cat")
+    assert [r["status"] for r in rows] == ["failed"] and "ConvergenceError" in rows[0]["reason"]
+    assert "failed t/R=0.15 h/R=1" in summary(out, ds)
+
+
+def test_dataset_conventions_and_round_trip(local, tmp_path):
+    outcome, _, cat, ds = local
+    assert ds["P_star"].dims == ("C10", "t_over_R", "h_over_R", "gamma")
+    assert ds["a_eq"].dims[-1] == "point"
+    assert ds["loading_P"].dims == ("C10", "t_over_R", "h_over_R", "loading_state")
+    for name, v in ds.variables.items():
+        assert "units" in v.attrs and "long_name" in v.attrs, name
+    names = ("C10", "gamma", "P_star", "a_star", "loading_U", "R")
+    units = {k: ds[k].attrs["units"] for k in names}
+    assert units == dict(C10="MPa", gamma="J m-2", P_star="N", a_star="mm", loading_U="mJ", R="mm")
+    a = ds.attrs
+    assert a["Conventions"] == "CF-1.8"
+    for k in ("title", "history", "source", "solver_version", "solver_settings"):
+        assert a[k]
+    assert (a["mesh"], a["interface"], a["solver_tol"]) == ("coarse", "no_slip", Settings().tol)
+    # the same cube built in memory equals what was read back from netCDF
+    plan = outcome.plan
+    with Catalogue(cat) as c:
+        entry, ps = c.fetch(plan.shells[0].key)
+    shell = plan.shells[0]
+    served = {(shell.t_over_R, shell.h_over_R): (entry.fingerprint, restrict(ps, 0.1))}
+    built = dataset.build(plan, served, {}, history=a["history"])
+    xr.testing.assert_identical(built, ds)
+    dataset.write(built, tmp_path / "again.nc")
+    xr.testing.assert_identical(load(tmp_path / "again.nc"), built)
+
+
+def test_outputs_can_leave_out_the_curves(local, tmp_path):
+    _, _, cat, ds = local
+    study = write(tmp_path / "lean.yaml", TINY + "outputs:\n  equilibrium_curves: false\n"
+                  "  loading_curves: false\n")
+    lean = load(run(study, tmp_path / "results", scheduler=UNREACHABLE, catalogue_dir=cat,
+                    progress=False).output)
+    assert "point" not in lean.dims and "loading_state" not in lean.dims
+    assert "a_eq" not in lean and "loading_P" not in lean
+    xr.testing.assert_identical(lean["P_star"], ds["P_star"])

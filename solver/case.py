@@ -17,8 +17,8 @@ from .mesh import CapMesh, cap_mesh, mesh_spec
 from .path import LoadingPath, RelaxationPath, Settings, State, load, relax
 
 GAMMA_MAX = 0.03        # default largest gamma / (C10 R) the relaxation paths must serve
-STEPS_PER_PATH = 12     # relaxation steps down to the stop criterion (about)
-G_SAFETY = 4.0          # relax until the flat-punch estimate of G exceeds G_SAFETY * gamma_max
+STEPS_PER_PATH = 8      # relaxation steps down to the stop criterion (about)
+G_SAFETY = 3.0          # relax until the flat-punch estimate of G exceeds G_SAFETY * gamma_max
 
 
 def flat_punch_G(start: State, s: State) -> float:

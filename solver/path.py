@@ -293,11 +293,16 @@ def _with_stiffness(s: State, dP):
 
 
 def _release_tensile(pb, x, delta, K, r, held, c, hist):
-    """Unilateral contact: release held nodes pulled by the plane, re-solve, repeat."""
+    """Unilateral contact: release held nodes pulled by the plane, re-solve, repeat.
+
+    The node on the axis is never released on its own: with the 2 pi r weight it carries
+    no area, so the sign of its reaction is round-off, not lift-off.
+    """
     d = pb.d
     while len(held) > 1:
         react = contact_reactions(d, r, held)
         scale = max(np.abs(react).max(), 1e-30)
+        react = np.where(np.asarray(held) == 0, np.inf, react)
         worst = int(np.argmin(react))
         if react[worst] >= -1e-8 * scale:
             break
@@ -340,11 +345,31 @@ def relax(d: Discretisation, interface: str, start: State, stop, step: float,
         states.append(s)
         if len(outside) and gaps(d, x, outside).min() < -settings.gap_tol:
             penetration = True
-        react = contact_reactions(d, r, held)
-        if react[0] < 0 and react.max() > 0 and len(held) > 2:
+        if centre_pulled(d, r, held):
             centre_lifts = True
         if stop(s):
             break
         h = min(step, 2 * h)
     return RelaxationPath(interface, start, tuple(states), ended_by, penetration,
                           centre_lifts, timer)
+
+
+def edge_forces(d: Discretisation, r_int, held):
+    """Plane reactions gathered per held outer edge (corner nodes shared half and half),
+    > 0 compression.  Per-node Q2 reactions alternate in size; per-edge sums do not."""
+    n = max(held) + 1
+    react = np.zeros(n)
+    react[list(held)] = contact_reactions(d, r_int, held)
+    n_edges = (n - 1) // 2
+    j = np.arange(n_edges)
+    return 0.5 * react[2 * j] + react[2 * j + 1] + 0.5 * react[2 * j + 2]
+
+
+def centre_pulled(d: Discretisation, r_int, held) -> bool:
+    """The centre wants to lift: the plane pulls the first edge while pushing another.
+
+    In JKR-like contact a tensile centre means a tensile zone throughout, so this is the
+    signature of the buckled (ring) contact of the paper's discussion.
+    """
+    f = edge_forces(d, r_int, held)
+    return len(f) > 1 and f[0] < 0 and f.max() > 0

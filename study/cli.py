@@ -12,7 +12,7 @@ import math
 import sys
 import time
 
-from solver import GAMMA_MAX, INTERFACES, InputError, __version__
+from solver import GAMMA_MAX, INTERFACES, ConvergenceError, InputError, __version__
 from solver.path import Settings
 
 MESHES = ("coarse", "default", "fine")
@@ -187,6 +187,10 @@ def main(argv=None):
     except InputError as err:
         print(f"shell-adhesion: error: {err}", file=sys.stderr)
         return 2
+    except (ConvergenceError, ValueError) as err:
+        # a solve that cannot go on, or a gamma the computed paths do not cover
+        print(f"shell-adhesion: failed: {err}", file=sys.stderr)
+        return 1
     return 0
 
 

@@ -74,7 +74,7 @@ def energy_surface(paths, n_grid=2000) -> EnergySurface:
 
 @dataclass(frozen=True, eq=False)
 class Equilibrium:
-    """Equilibrium curve G = gamma: one point per path that reaches it."""
+    """Equilibrium curve G = gamma: one point per pair of neighbouring contact radii."""
 
     gamma: float
     a: np.ndarray

@@ -160,7 +160,7 @@ def cap_mesh(cap: Cap, spec: MeshSpec) -> CapMesh:
     renumber[order] = np.arange(len(order))
     p = verts[first[order]].T
     t = renumber[inverse.ravel()][cells]
-    m2 = MeshQuad2.from_mesh(MeshQuad1(p, t))
+    m2 = MeshQuad2.from_mesh(MeshQuad1(np.ascontiguousarray(p), np.ascontiguousarray(t)))
     doflocs = np.array(m2.doflocs, order="C")
     loc = (2 * ElementQuad2.doflocs).astype(int)  # (9, 2) local Q2 grid offsets
     edofs = m2.dofs.element_dofs

@@ -163,7 +163,8 @@ class _Problem:
         history = []
         lu = None
         for _ in range(self.s.max_iter):
-            K, r = self.assemble(x)
+            with np.errstate(invalid="ignore", divide="ignore"):  # an inverted trial iterate
+                K, r = self.assemble(x)
             if not np.all(np.isfinite(r)):
                 raise ConvergenceError("non-finite residual (element inverted)")
             res, ok = self.converged(r, c)

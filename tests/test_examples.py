@@ -13,3 +13,12 @@ def test_ex01_base_case():
     spec.loader.exec_module(ex)
     po = ex.pull_off("coarse")
     assert -1.9 < force_N(po.P_star, 0.3, 20.0) < -1.5
+
+
+def test_ex02_hertz_table():
+    spec = importlib.util.spec_from_file_location("ex02", EXAMPLES / "ex02_hertz_table.py")
+    ex = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(ex)
+    rows = ex.table("coarse")
+    resolved = rows[rows[:, 0] > 0.03]
+    assert len(resolved) >= 2 and abs(resolved[:, 2] - 1).max() < 0.05

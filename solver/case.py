@@ -130,10 +130,12 @@ def solve_loading(t: float, h: float, interface: str, mesh: str, delta_max: floa
 def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "default",
                 delta_max: float = 0.25, gamma_max: float = GAMMA_MAX,
                 settings: Settings = Settings(), relax_paths: bool = True,
-                progress=None, map=None) -> tuple:
+                progress=None, map=None, path_progress=None) -> tuple:
     """Loading and relaxation paths of one shell: (PathSet, Discretisation, LoadingPath).
 
-    `map` (e.g. an executor's map) runs the independent relaxation paths in parallel.
+    `progress(delta)` is called after each loading state, `path_progress(done, total)`
+    after each relaxation path; `map` (e.g. an executor's map) runs the independent
+    relaxation paths in parallel.
     """
     t0 = time.perf_counter()
     d, loading = solve_loading(t, h, interface, mesh, delta_max, settings, progress)
@@ -142,8 +144,12 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
     if relax_paths:
         starts = relaxation_starts(loading, d.capmesh)
         if map is None:
-            relaxations = tuple(Relaxation.of(relax_from(d, interface, s, gamma_max, settings))
-                                for s in starts)
+            relaxations = []
+            for s in starts:
+                relaxations.append(Relaxation.of(relax_from(d, interface, s, gamma_max, settings)))
+                if path_progress is not None:
+                    path_progress(len(relaxations), len(starts))
+            relaxations = tuple(relaxations)
         else:
             n = len(starts)
             relaxations = tuple(map(relaxation_task, [t] * n, [h] * n, [interface] * n,

@@ -205,7 +205,7 @@ class _Problem:
         dP = -float(np.sum(K[c.rimz] @ dx))
         return dx, dP
 
-    def state(self, c, x, delta, r, held, joined, history, dP=np.nan):
+    def state(self, x, delta, r, held, joined, history, dP=np.nan):
         d = self.d
         a = float(deformed_radius(d, x, max(held))) if len(held) else 0.0
         return State(delta, rim_load(d, r), strain_energy(d, x), a, tuple(held), joined,
@@ -226,7 +226,7 @@ def load(d: Discretisation, interface: str, delta_max: float,
     delta = 0.0
     c = constraints(d, interface, held)
     K, r = pb.assemble(x)
-    states = [pb.state(c, x, delta, r, held, 0, ())]
+    states = [pb.state(x, delta, r, held, 0, ())]
     step_cap = settings.step_max
     reuse = None
     while delta < delta_max * (1 - 1e-12):
@@ -279,7 +279,7 @@ def load(d: Discretisation, interface: str, delta_max: float,
             x, K, r, held, c, hist = _release_tensile(pb, x, delta, K, r, held, c, hist)
             if len(held) != n_held:
                 reuse = None
-        states.append(replace(pb.state(c, x, delta, r, held, joined, hist),
+        states.append(replace(pb.state(x, delta, r, held, joined, hist),
                               dP_ddelta_left=dP_left))
         if progress is not None:
             progress(delta)
@@ -342,7 +342,7 @@ def relax(d: Discretisation, interface: str, start: State, stop, step: float,
             continue
         x, delta, K, r = xn, dn, Kn, rn
         dx, dP = pb.tangent_direction(K, c, pb.last_lu)
-        s = pb.state(c, x, delta, r, held, -1, hist, dP)
+        s = pb.state(x, delta, r, held, -1, hist, dP)
         states.append(s)
         if len(outside) and gaps(d, x, outside).min() < -settings.gap_tol:
             penetration = True

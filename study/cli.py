@@ -14,6 +14,7 @@ import time
 
 from solver import GAMMA_MAX, INTERFACES, ConvergenceError, InputError, __version__
 from solver.path import Settings
+from solver.scaling import gamma_hat
 
 MESHES = ("coarse", "default", "fine")
 
@@ -56,7 +57,7 @@ def _case_input(ns):
     for g in gammas:
         if g <= 0:
             raise InputError(f"--gamma: {g:g} must be > 0 (J/m^2)")
-        g_hat = g * 1e-3 / (C10 * R)
+        g_hat = gamma_hat(g, C10, R)
         if g_hat > GAMMA_MAX:
             raise InputError(f"--gamma: {g:g} gives gamma/(C10 R) = {g_hat:.4g}, which must be "
                              f"<= {GAMMA_MAX:g} (supported range of the relaxation paths)")
@@ -65,36 +66,33 @@ def _case_input(ns):
 
 
 def _run_case(ns):
-    from solver.case import pathset_of, relax_from, relaxation_starts, solve_loading
-    from solver.geometry import Cap
+    from solver.case import solve_paths
     from tqdm import tqdm
 
     from .case_report import adhesion_dicts, loading_dict, relaxation_list
 
     inp = _case_input(ns)
     R, C10 = inp["R_mm"], inp["C10_MPa"]
-    Cap(inp["t_mm"] / R, inp["h_mm"] / R)
-    g_hats = [g * 1e-3 / (C10 * R) for g in inp["gamma_J_m2"]]
+    g_hats = [gamma_hat(g, C10, R) for g in inp["gamma_J_m2"]]
     gamma_max = max(g_hats) * 1.25 if g_hats else GAMMA_MAX
     t0 = time.perf_counter()
-    delta_max = inp["delta_max_mm"] / R
     with tqdm(total=round(inp["delta_max_mm"], 6), unit="mm", desc="loading", file=sys.stderr,
               disable=None, leave=False) as bar:
         def progress(delta):
             bar.update(round(delta * R, 6) - bar.n)
-        d, loading = solve_loading(inp["t_mm"] / R, inp["h_mm"] / R, inp["interface"],
-                                   inp["mesh"], delta_max, Settings(), progress)
-    t1 = time.perf_counter()
-    relaxations = []
-    if g_hats:
-        from solver.case import Relaxation
-        starts = relaxation_starts(loading, d.capmesh)
-        for s in tqdm(starts, desc="relaxation paths", file=sys.stderr, disable=None, leave=False):
-            relaxations.append(Relaxation.of(relax_from(d, inp["interface"], s, gamma_max)))
-    t2 = time.perf_counter()
-    stats = dict(dofs=int(d.ndof), elements=int(d.capmesh.mesh.nelements))
-    ps = pathset_of(inp["t_mm"] / R, inp["h_mm"] / R, inp["interface"], inp["mesh"], delta_max,
-                    gamma_max, loading, relaxations, stats)
+
+        def path_progress(done, total):
+            if done == 1:
+                bar.set_description("relaxation paths")
+                bar.reset(total)
+            bar.update(1)
+        ps, d, loading = solve_paths(inp["t_mm"] / R, inp["h_mm"] / R, inp["interface"],
+                                     inp["mesh"], inp["delta_max_mm"] / R, gamma_max,
+                                     relax_paths=bool(g_hats), progress=progress,
+                                     path_progress=path_progress)
+    t1 = t0 + ps.stats["loading_s"]
+    t2 = t1 + ps.stats["relaxation_s"]
+    relaxations = ps.relaxations
     out = {"input": inp, "loading": loading_dict(ps, R, C10)}
     if g_hats:
         out["relaxation"] = relaxation_list(ps, R, C10)

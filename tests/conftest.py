@@ -1,11 +1,18 @@
 """Shared, cached solutions (the real solver; coarse meshes unless a test needs more)."""
 import functools
 import multiprocessing
+import os
+from pathlib import Path
 from concurrent.futures import ProcessPoolExecutor
 
 import pytest
 
 from solver import solve_paths
+
+REPO = Path(__file__).resolve().parents[1]
+# environment for subprocesses that must import this checkout
+ENV = dict(os.environ, PYTHONPATH=os.pathsep.join(
+    p for p in (str(REPO), os.environ.get("PYTHONPATH")) if p))
 
 BASE = dict(t=0.15, h=1.0)          # paper base case: t = 3 mm, h = R = 20 mm
 R_MM, C10_MPA, GAMMA = 20.0, 0.3, 30.0

@@ -1,7 +1,6 @@
 """A run killed with SIGKILL after its first path set is stored loses nothing finished: the
 rerun reuses that set, computes the rest and writes the same dataset as an uninterrupted run."""
 import os
-from pathlib import Path
 import signal
 import sqlite3
 import subprocess
@@ -13,9 +12,7 @@ import xarray as xr
 from catalogue import Catalogue, list_entries
 from study.run import run, summary
 
-REPO = Path(__file__).resolve().parents[1]
-ENV = dict(os.environ, PYTHONPATH=os.pathsep.join(
-    p for p in (str(REPO), os.environ.get("PYTHONPATH")) if p))
+from conftest import ENV, REPO
 
 # two shells (a thin shell, then a costlier solid cap) on one worker: dask runs the tasks
 # in submission order, so the thin shell is stored seconds before the solid one

@@ -3,7 +3,6 @@ external scheduler give the same numbers, the catalogue serves every rerun and e
 or gamma, failures are recorded, and the cube round-trips through netCDF."""
 import json
 import os
-from pathlib import Path
 import signal
 import subprocess
 import sys
@@ -19,9 +18,7 @@ from study import dataset
 from study.plan import restrict
 from study.run import run, run_study, summary
 
-REPO = Path(__file__).resolve().parents[1]
-ENV = dict(os.environ, PYTHONPATH=os.pathsep.join(
-    p for p in (str(REPO), os.environ.get("PYTHONPATH")) if p))
+from conftest import ENV
 
 # one shell, 3 C10 x 3 gamma: gamma/(C10 R) from 0.0033 to 0.0075, one set of FE paths
 TINY = """\

@@ -5,8 +5,11 @@ processes unless --scheduler); warm: the same study again on that catalogue (all
 no cluster started).  The grid shows the scaling of DESIGN.md section 3: 25 points, one
 set of FE paths.
 
+Tables and figures: the time to write every table and figure from a results netCDF (read,
+tables, figures), after each study, or alone with --products RESULTS.nc.
+
 Run: python benchmarks/study.py [study.yaml] [--mesh coarse] [--workers N] [--scheduler ADDR]
-     [--grid-only]
+     [--grid-only] [--products results/paper.nc]
 The default study is workflow.yaml (11 shells on the default mesh: its cold run is long).
 """
 import argparse
@@ -19,6 +22,7 @@ import yaml
 HERE = Path(__file__).resolve().parent
 # this script shares its name with the `study` package: import the package, not itself
 sys.path[:] = [p for p in sys.path if Path(p or ".").resolve() != HERE]
+from study.products import write_products  # noqa: E402
 from study.run import run  # noqa: E402
 
 REPO = HERE.parent
@@ -49,7 +53,12 @@ def main(argv=None):
     p.add_argument("--scheduler", default=None, help="dask scheduler address")
     p.add_argument("--grid-only", action="store_true", help="only the 5 x 5 grid")
     p.add_argument("--quiet", action="store_true", help="no progress bars")
+    p.add_argument("--products", default=None, metavar="RESULTS.nc",
+                   help="only time the tables and figures of an existing results file")
     args = p.parse_args(argv)
+    if args.products:
+        products(args.products)
+        return
 
     docs = [] if args.grid_only else [yaml.safe_load(Path(args.study).read_text())]
     docs.append(dict(GRID))
@@ -64,6 +73,17 @@ def main(argv=None):
                   f"{len(cold.plan.shells):6d} {len(cold.plan.points):6d} {cold.wall_s:8.1f} "
                   f"{len(cold.computed):8d} {warm.wall_s:7.2f} {len(warm.reused):6d} "
                   f"{len(cold.failed):6d} {cold.counts['ok']:6d}", flush=True)
+            products(warm.output)
+
+
+def products(results_nc):
+    """Print the wall time of every table and figure written from `results_nc`."""
+    pr = write_products(results_nc)
+    s = pr.seconds
+    print(f"  tables and figures of {results_nc}: {len(pr.tables)} tables, {len(pr.figures)} "
+          f"figure files in {s['total']:.2f} s (read {s['read']:.2f} s, tables "
+          f"{s['tables']:.2f} s, figures {s['figures']:.2f} s); skipped: {pr.skipped or 'none'}",
+          flush=True)
 
 
 if __name__ == "__main__":

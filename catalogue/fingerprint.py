@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-LAYOUT = 1          # version of the stored path-set file layout (catalogue.pathfile)
+LAYOUT = 2          # version of the stored path-set file layout (catalogue.pathfile)
 AT_LEAST = ("delta_max_over_R", "gamma_max_hat")   # a stored set with larger values serves
 
 

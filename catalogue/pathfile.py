@@ -3,7 +3,9 @@
 Dimensionless, as the solver computes it: lengths / R, forces / (C10 R^2), energies /
 (C10 R^3).  Loading states along `loading_state`; the relaxation paths are one CF
 contiguous ragged array: path k holds `relaxation_length[k]` consecutive samples of
-`relaxation_state`, delta decreasing from its loaded state.
+`relaxation_state`, delta decreasing from its loaded state.  The views kept for figures:
+deformed profiles along `profile` (outer and inner surface nodes), and stress maps along
+`stress_map` (deformed nodes, nodal von Mises / C10) over one triangulation.
 
 Files are written atomically (temporary file in the same folder, fsync, os.replace,
 fsync of the folder) and read from one in-memory copy, so the bytes checked against the
@@ -21,6 +23,7 @@ import numpy as np
 import xarray as xr
 
 from solver.case import PathSet, Relaxation
+from solver.postprocess import Profile, StressMap
 
 from .fingerprint import LAYOUT, canonical_json
 
@@ -45,9 +48,31 @@ _LONG_NAMES = {
     "relaxation_penetration": "a node outside the held zone touched the plane (0/1)",
     "relaxation_centre_lifts": "the plane pulled the centre down (0/1)",
     "relaxation_newton_iterations": "Newton iterations of the path",
+    "profile_stage": "loading, or relaxation at the fixed contact radius profile_a",
+    "profile_a": "contact radius a / R of the state",
+    "profile_delta": "rim displacement delta / R of the state",
+    "profile_P": "rim force P / (C10 R^2) of the state",
+    "profile_outer_r": "deformed r / R of the outer-surface nodes, from the axis",
+    "profile_outer_z": "deformed z / R of the outer-surface nodes (plane at z = 0)",
+    "profile_inner_r": "deformed r / R of the inner-surface nodes, from the axis",
+    "profile_inner_z": "deformed z / R of the inner-surface nodes",
+    "map_stage": "loading, or relaxation at the fixed contact radius map_a",
+    "map_a": "contact radius a / R of the state",
+    "map_delta": "rim displacement delta / R of the state",
+    "map_P": "rim force P / (C10 R^2) of the state",
+    "map_r": "deformed r / R of every node",
+    "map_z": "deformed z / R of every node",
+    "map_von_mises": "von Mises stress / C10 at the nodes (lumped L2 projection)",
+    "map_triangles": "node indices of the triangles (8 per Q2 element)",
 }
+_VIEW_SCALARS = ("stage", "a", "delta", "P")
 _ATTRS = {"t": "t_over_R", "h": "h_over_R", "interface": "interface", "mesh": "mesh",
           "delta_max": "delta_max_over_R", "gamma_max": "gamma_max_hat"}
+
+
+def _stored(cls):
+    """The fields stored as columns (views have their own variables)."""
+    return [f for f in fields(cls) if f.name != "views"]
 
 
 def _is_array(f) -> bool:
@@ -76,7 +101,7 @@ def to_dataset(ps: PathSet, key: dict, fp: str) -> xr.Dataset:
     for f in fields(PathSet):
         if _is_array(f):
             data[f.name] = _var(f.name, "loading_state", np.asarray(getattr(ps, f.name)))
-    for f in fields(Relaxation):
+    for f in _stored(Relaxation):
         name = f"relaxation_{f.name}"
         if _is_array(f):
             values = [np.asarray(getattr(r, f.name)) for r in rel]
@@ -89,6 +114,7 @@ def to_dataset(ps: PathSet, key: dict, fp: str) -> xr.Dataset:
         "relaxation_length", "relaxation", np.array([len(r.delta) for r in rel], dtype=np.int64),
         sample_dimension="relaxation_state")
     data["relaxation_length"][2]["long_name"] = "samples of the path along relaxation_state"
+    data.update(_views_data(ps.views))
     attrs = dict(
         title="shell-adhesion FE path set (dimensionless: lengths / R, forces / (C10 R^2), "
               "energies / (C10 R^3))",
@@ -106,7 +132,7 @@ def from_dataset(ds: xr.Dataset) -> PathSet:
     rel = []
     for k, (s, e) in enumerate(zip(starts, ends)):
         kw = {}
-        for f in fields(Relaxation):
+        for f in _stored(Relaxation):
             v = ds[f"relaxation_{f.name}"].values
             if _is_array(f):
                 kw[f.name] = v[s:e]
@@ -119,7 +145,55 @@ def from_dataset(ds: xr.Dataset) -> PathSet:
     for f in fields(PathSet):
         if _is_array(f):
             kw[f.name] = ds[f.name].values
-    return PathSet(relaxations=tuple(rel), stats=json.loads(ds.attrs["stats"]), **kw)
+    return PathSet(relaxations=tuple(rel), stats=json.loads(ds.attrs["stats"]),
+                   views=_views_of(ds), **kw)
+
+
+def _views_data(views) -> dict:
+    profiles = [v for v in views if isinstance(v, Profile)]
+    maps = [v for v in views if isinstance(v, StressMap)]
+    data = {}
+    for kind, items, dim in (("profile", profiles, "profile"), ("map", maps, "stress_map")):
+        for k in _VIEW_SCALARS:
+            column = [getattr(v, k) for v in items]
+            data[f"{kind}_{k}"] = _var(f"{kind}_{k}", dim, np.array(
+                column, dtype=object if k == "stage" else float))
+    for side in ("outer", "inner"):
+        for i, c in enumerate("rz"):
+            name = f"profile_{side}_{c}"
+            width = getattr(profiles[0], side).shape[1] if profiles else 0
+            arr = np.array([getattr(p, side)[i] for p in profiles]).reshape(len(profiles), width)
+            data[name] = _var(name, ("profile", f"{side}_node"), arr)
+    n = maps[0].nodes.shape[1] if maps else 0
+    data["map_r"] = _var("map_r", ("stress_map", "node"),
+                         np.array([m.nodes[0] for m in maps]).reshape(len(maps), n))
+    data["map_z"] = _var("map_z", ("stress_map", "node"),
+                         np.array([m.nodes[1] for m in maps]).reshape(len(maps), n))
+    data["map_von_mises"] = _var("map_von_mises", ("stress_map", "node"),
+                                 np.array([m.von_mises for m in maps]).reshape(len(maps), n))
+    tri = maps[0].triangles if maps else np.zeros((0, 3), dtype=np.int64)
+    if any(not np.array_equal(m.triangles, tri) for m in maps):
+        raise ValueError("the stress maps of a path set must share one triangulation")
+    data["map_triangles"] = _var("map_triangles", ("triangle", "vertex"), tri.astype(np.int64))
+    return data
+
+
+def _views_of(ds: xr.Dataset) -> tuple:
+    if "profile_stage" not in ds:
+        return ()
+    views = []
+    for j in range(ds.sizes.get("profile", 0)):
+        sc = [ds[f"profile_{k}"].values[j] for k in _VIEW_SCALARS]
+        views.append(Profile(str(sc[0]), *map(float, sc[1:]),
+                             np.stack([ds["profile_outer_r"].values[j], ds["profile_outer_z"].values[j]]),
+                             np.stack([ds["profile_inner_r"].values[j], ds["profile_inner_z"].values[j]])))
+    tri = ds["map_triangles"].values
+    for j in range(ds.sizes.get("stress_map", 0)):
+        sc = [ds[f"map_{k}"].values[j] for k in _VIEW_SCALARS]
+        views.append(StressMap(str(sc[0]), *map(float, sc[1:]),
+                               np.stack([ds["map_r"].values[j], ds["map_z"].values[j]]),
+                               ds["map_von_mises"].values[j], tri))
+    return tuple(views)
 
 
 def fsync_dir(directory):
@@ -147,6 +221,9 @@ def write_atomic(ds: xr.Dataset, path, encoding=None) -> tuple:
             os.fsync(fd)
         finally:
             os.close(fd)
+        mask = os.umask(0)
+        os.umask(mask)
+        os.chmod(tmp, 0o666 & ~mask)        # mkstemp makes it private; results are not
         os.replace(tmp, path)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)

@@ -5,7 +5,7 @@ and the energy method for any number of gamma values.
 A `PathSet` holds only arrays, so it can be stored, shipped to other processes and
 post-processed for any C10, R and gamma (DESIGN.md section 3).
 """
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 import time
 
 import numpy as np
@@ -15,6 +15,7 @@ from .forms import Discretisation, discretise
 from .geometry import Cap
 from .mesh import CapMesh, cap_mesh, mesh_spec
 from .path import LoadingPath, RelaxationPath, Settings, State, load, relax
+from .postprocess import StressMap, profile, spread, stress_map
 
 GAMMA_MAX = 0.03        # default largest gamma / (C10 R) the relaxation paths must serve
 STEPS_PER_PATH = 8      # relaxation steps down to the stop criterion (about)
@@ -80,12 +81,32 @@ class Relaxation:
     penetration: bool
     centre_lifts: bool
     newton_iterations: int
+    views: tuple = ()       # Profile and StressMap of the path, when asked for (figures)
 
     @classmethod
-    def of(cls, path: RelaxationPath):
+    def of(cls, path: RelaxationPath, d: Discretisation = None):
+        """The path's arrays; with `d`, also its views (see `relaxation_views`)."""
         return cls(path.start.a, path.array("delta"), path.array("P"), path.array("U"),
                    path.array("dP_ddelta"), path.ended_by, path.penetration,
-                   path.centre_lifts or has_hole(path.start), path.timer.newton_iterations)
+                   path.centre_lifts or has_hole(path.start), path.timer.newton_iterations,
+                   relaxation_views(d, path) if d is not None else ())
+
+
+def loading_views(d: Discretisation, loading: LoadingPath) -> tuple:
+    """Profiles of loading states evenly spaced in delta (from the undeformed cap at
+    delta = 0), and the stress map at the end of loading."""
+    return (*(profile(d, s, "loading") for s in spread(loading.states)),
+            stress_map(d, loading.states[-1], "loading"))
+
+
+def relaxation_views(d: Discretisation, path: RelaxationPath) -> tuple:
+    """Profiles evenly spaced in delta along the path, and the stress map where delta is
+    nearest 0 (the paper's Fig. 2b), or at its end if it stays above 0."""
+    states = path.states
+    deltas = np.array([s.delta for s in states])
+    at = int(np.argmin(np.abs(deltas))) if deltas.min() <= 0 else len(states) - 1
+    return (*(profile(d, s, "relaxation") for s in spread(states)),
+            stress_map(d, states[at], "relaxation"))
 
 
 @dataclass(frozen=True, eq=False)
@@ -105,6 +126,7 @@ class PathSet:
     loading_joined: np.ndarray      # outer node joining at each state (-1: plain step)
     relaxations: tuple
     stats: dict = field(default_factory=dict)
+    views: tuple = ()               # Profile and StressMap states kept for figures
 
     def surface(self) -> EnergySurface:
         usable = [r for r in self.relaxations if not r.centre_lifts and not r.penetration]
@@ -145,15 +167,17 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
         starts = relaxation_starts(loading, d.capmesh)
         if map is None:
             relaxations = []
-            for s in starts:
-                relaxations.append(Relaxation.of(relax_from(d, interface, s, gamma_max, settings)))
+            for i, s in enumerate(starts):
+                path = relax_from(d, interface, s, gamma_max, settings)
+                relaxations.append(Relaxation.of(path, d if i == len(starts) - 1 else None))
                 if path_progress is not None:
                     path_progress(len(relaxations), len(starts))
             relaxations = tuple(relaxations)
         else:
             n = len(starts)
             relaxations = tuple(map(relaxation_task, [t] * n, [h] * n, [interface] * n,
-                                    [mesh] * n, starts, [gamma_max] * n, [settings] * n))
+                                    [mesh] * n, starts, [gamma_max] * n, [settings] * n,
+                                    [i == n - 1 for i in range(n)]))
     t2 = time.perf_counter()
     stats = dict(dofs=int(d.ndof), elements=int(d.capmesh.mesh.nelements),
                  loading_states=len(loading.states),
@@ -162,17 +186,26 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
                  assembly_s=loading.timer.assembly, linear_solve_s=loading.timer.solve,
                  loading_s=t1 - t0, relaxation_s=t2 - t1)
     return pathset_of(t, h, interface, mesh, delta_max, gamma_max, loading, relaxations,
-                      stats), d, loading
+                      stats, loading_views(d, loading)), d, loading
 
 
-def pathset_of(t, h, interface, mesh, delta_max, gamma_max, loading, relaxations, stats):
+def pathset_of(t, h, interface, mesh, delta_max, gamma_max, loading, relaxations, stats,
+               views=()):
+    """The PathSet of a loading path, its Relaxations and the loading views; the
+    relaxations' views move to the set's (profiles, then stress maps, each in stage order)."""
+    views = tuple(views) + tuple(v for r in relaxations for v in r.views)
+    views = tuple(sorted(views, key=lambda v: isinstance(v, StressMap)))  # profiles first
+    relaxations = tuple(replace(r, views=()) if r.views else r for r in relaxations)
     return PathSet(t, h, interface, mesh, delta_max, gamma_max,
                    loading.array("delta"), loading.array("P"), loading.array("a"),
-                   loading.array("U"), loading.array("joined"), tuple(relaxations), stats)
+                   loading.array("U"), loading.array("joined"), relaxations, stats, views)
 
 
 def relaxation_task(t: float, h: float, interface: str, mesh: str, start: State,
-                    gamma_max: float = GAMMA_MAX, settings: Settings = Settings()) -> Relaxation:
-    """One relaxation path as an independent task (rebuilds the discretisation)."""
+                    gamma_max: float = GAMMA_MAX, settings: Settings = Settings(),
+                    views: bool = False) -> Relaxation:
+    """One relaxation path as an independent task (rebuilds the discretisation); with
+    `views`, it keeps the path's profiles and stress map."""
     d = discretise(cap_mesh(Cap(t, h), mesh_spec(mesh)))
-    return Relaxation.of(relax_from(d, interface, start, gamma_max, settings))
+    return Relaxation.of(relax_from(d, interface, start, gamma_max, settings),
+                         d if views else None)

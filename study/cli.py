@@ -3,12 +3,18 @@
     shell-adhesion case --R 20 --t 3 --h 20 --C10 0.3 [--gamma 30 ...] [--json]
     shell-adhesion run workflow.yaml --out results/ [--scheduler ADDRESS] [--catalogue DIR]
     shell-adhesion catalogue list [--catalogue DIR]
+    shell-adhesion tables results/paper.nc [--format md|csv|tex] [--table cases|paper|all] [--out FILE]
+    shell-adhesion plot results/paper.nc [--out DIR] [--format png,pdf] [--dpi 150]
+    shell-adhesion analyse results/paper.nc
+
+`tables`, `plot` and `analyse` read a results cube and never run the solver.
 
 Bad input prints one line naming the flag, the value and the rule, and exits with 2.
 """
 import argparse
 import json
 import math
+from pathlib import Path
 import sys
 import time
 
@@ -17,6 +23,7 @@ from solver.path import Settings
 from solver.scaling import gamma_hat
 
 MESHES = ("coarse", "default", "fine")
+FIGURE_FORMATS = ("png", "pdf", "svg")
 
 
 class _Parser(argparse.ArgumentParser):
@@ -141,6 +148,73 @@ def _print_case(out):
     print(f"{p['dofs']} dofs, {p['newton_iterations']} Newton iterations, {p['wall_s']:.1f} s")
 
 
+def _run_tables(ns):
+    from .analysis import open_results
+    from .products import write_text_atomic
+    from .tables import cases_table, comparison_table, render
+
+    ds = open_results(ns.results)
+    makers = {"cases": [cases_table], "paper": [comparison_table],
+              "all": [cases_table, comparison_table]}[ns.table]
+    tables = [make(ds) for make in makers]
+    if len(tables) == 1:
+        text = render(tables[0], ns.format)
+    else:
+        lead = {"md": "## ", "csv": "# ", "tex": "% "}[ns.format]
+        text = "\n".join(f"{lead}{t.title}\n\n{render(t, ns.format)}" for t in tables)
+    if ns.out is None:
+        sys.stdout.write(text)
+        return 0
+    out = Path(ns.out)
+    if not out.parent.is_dir():
+        raise InputError(f"--out: {ns.out}: the folder {out.parent} does not exist")
+    try:
+        write_text_atomic(out, text)
+    except OSError as e:
+        raise InputError(f"--out: {ns.out}: cannot be written ({e.strerror or e})") from None
+    return 0
+
+
+def _dpi(text):
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if not 20 <= value <= 1200:
+        raise argparse.ArgumentTypeError(f"{text!r} must be an integer from 20 to 1200")
+    return value
+
+
+def _run_plot(ns):
+    from .analysis import open_results
+    from .figures import write_figures
+
+    formats = tuple(f.strip() for f in ns.format.split(",") if f.strip())
+    bad = [f for f in formats if f not in FIGURE_FORMATS]
+    if bad or not formats:
+        raise InputError(f"--format: {ns.format!r} must be a comma-separated list of "
+                         f"{', '.join(FIGURE_FORMATS)}")
+    ds = open_results(ns.results)
+    out = Path(ns.out) if ns.out else Path(ns.results).with_suffix("").with_name(
+        Path(ns.results).stem + "_figures")
+    t0 = time.perf_counter()
+    try:
+        written, skipped = write_figures(ds, out, formats, dpi=ns.dpi)
+    except OSError as e:
+        raise InputError(f"--out: {out}: cannot be written ({e.strerror or e})") from None
+    for name, why in skipped.items():
+        print(f"skipped {name}: {why}", file=sys.stderr)
+    print(f"{len(written)} files in {out} ({time.perf_counter() - t0:.1f} s)")
+    return 0
+
+
+def _run_analyse(ns):
+    from .analysis import open_results, summary
+
+    print(summary(open_results(ns.results)))
+    return 0
+
+
 def _parser():
     parser = _Parser(prog="shell-adhesion",
                      description="Adhesion of a soft hyperelastic spherical-cap shell on a rigid plane.")
@@ -167,6 +241,26 @@ def _parser():
     cat = sub.add_parser("catalogue", help="inspect the catalogue of solved path sets")
     cat.add_argument("action", choices=("list",))
     cat.add_argument("--catalogue", default=None, help="catalogue folder")
+    tab = sub.add_parser("tables", help="tables from a results cube: every case, or ours beside "
+                                        "the paper's (never runs the solver)")
+    tab.add_argument("results", help="results netCDF written by `run` (results/<name>.nc)")
+    tab.add_argument("--format", choices=("md", "csv", "tex"), default="md",
+                     help="GitHub Markdown (default), CSV (full precision) or LaTeX booktabs")
+    tab.add_argument("--table", choices=("cases", "paper", "all"), default="cases",
+                     help="cases: one row per evaluated point (default); paper: ours beside the "
+                          "paper's numbers; all: both")
+    tab.add_argument("--out", default=None, help="write to FILE (atomically) instead of stdout")
+    plot = sub.add_parser("plot", help="the paper's figures from a results cube, PNG and PDF "
+                                       "(never runs the solver)")
+    plot.add_argument("results", help="results netCDF written by `run` (results/<name>.nc)")
+    plot.add_argument("--out", default=None,
+                      help="output folder (default: results/<name>_figures beside the cube)")
+    plot.add_argument("--format", default="png,pdf",
+                      help="comma-separated file types: png, pdf, svg (default png,pdf)")
+    plot.add_argument("--dpi", type=_dpi, default=150, help="PNG resolution (default 150)")
+    ana = sub.add_parser("analyse", aliases=["summary"],
+                         help="trends of |P*|, eta fit, slope in gamma, JKR ratio of a results cube")
+    ana.add_argument("results", help="results netCDF written by `run` (results/<name>.nc)")
     return parser
 
 
@@ -178,6 +272,12 @@ def main(argv=None):
         if ns.command == "run":
             from .run import run_study
             return run_study(ns.study, ns.out, scheduler=ns.scheduler, catalogue_dir=ns.catalogue)
+        if ns.command == "tables":
+            return _run_tables(ns)
+        if ns.command == "plot":
+            return _run_plot(ns)
+        if ns.command in ("analyse", "summary"):
+            return _run_analyse(ns)
         if ns.command == "catalogue":
             from catalogue import format_entries, list_entries
             print(format_entries(list_entries(ns.catalogue)))

@@ -18,6 +18,8 @@
     outputs:
       equilibrium_curves: true  # a, delta, P along each equilibrium curve (default true)
       loading_curves: true      # the loading curve of each shell (default true)
+      relaxation_curves: true   # P, delta of every relaxation path (default true)
+      deformed_states: true     # profiles and von Mises maps for figures (default true)
 
 Besides each value's own rule, every requested shell must be a valid cap deeper than
 delta_max, and every requested gamma / (C10 R) at most solver.case.GAMMA_MAX.  The file is
@@ -25,7 +27,7 @@ read by a SafeLoader (tags such as !!python/object are errors, never run) that a
 duplicate keys.  Every problem is one StudyError whose message names its place, e.g.
 ``sweeps.t_over_R[3]: 1.2 must be <= 1 (t <= R)``.
 """
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 import hashlib
 import itertools
 import math
@@ -43,7 +45,7 @@ FACTORS = ("C10_MPa", "t_over_R", "h_over_R", "gamma_J_m2")
 MESHES = ("coarse", "default", "fine")
 KEYS = ("name", "description", "R_mm", "base", "sweeps", "grid", "interface", "mesh",
         "delta_max_over_R", "outputs")
-OUTPUTS = ("equilibrium_curves", "loading_curves")
+OUTPUTS = ("equilibrium_curves", "loading_curves", "relaxation_curves", "deformed_states")
 DELTA_MAX_LIMIT = 0.5
 _STEM = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]{0,99}")
 
@@ -56,6 +58,8 @@ class StudyError(ValueError):
 class Outputs:
     equilibrium_curves: bool = True
     loading_curves: bool = True
+    relaxation_curves: bool = True
+    deformed_states: bool = True
 
 
 @dataclass(frozen=True, eq=False)
@@ -81,8 +85,7 @@ class Study:
                     base=dict(self.base), sweeps={k: list(v) for k, v in self.sweeps.items()},
                     grid={k: list(v) for k, v in self.grid.items()}, interface=self.interface,
                     mesh=self.mesh, delta_max_over_R=self.delta_max_over_R,
-                    outputs=dict(equilibrium_curves=self.outputs.equilibrium_curves,
-                                 loading_curves=self.outputs.loading_curves))
+                    outputs=asdict(self.outputs))
 
 
 # -- reading ---------------------------------------------------------------------------

@@ -12,6 +12,11 @@ lengths mm, forces N, energies mJ (N mm); P > 0 compression, delta > 0 approach.
   along ``point`` (the points where G = gamma, increasing a);
 - loading curves (t_over_R, h_over_R, loading_state): loading_delta, loading_a, and with C10
   (exact scaling, every C10 of the axis) loading_P and loading_U;
+- relaxation curves (t_over_R, h_over_R, relaxation[, relaxation_state]): relaxation_a,
+  relaxation_used, relaxation_delta, and with C10 relaxation_P and relaxation_U;
+- deformed states (t_over_R, h_over_R, profile | stress_map, ...): profile_* (outer and
+  inner surfaces of a few loading states and of the widest relaxation path), map_* (deformed
+  nodes, von Mises stress with C10, plotting triangles);
 - per shell (t_over_R, h_over_R): pathset_fingerprint, the catalogue entry of the FE
   paths used, and gamma_max_hat, the largest gamma / (C10 R) they serve.
 
@@ -143,6 +148,10 @@ def build(plan: Plan, served: dict, failed: dict, history: str = "") -> xr.Datas
         "1", "catalogue fingerprint of the FE path set used (empty: none)"))
     data["gamma_max_hat"] = (("t_over_R", "h_over_R"), gmax, _attrs(
         "1", "largest gamma / (C10 R) the shell's FE paths serve"))
+    if study.outputs.relaxation_curves:
+        data.update(_relaxation_curves(served, index, shells, C10s, R))
+    if study.outputs.deformed_states:
+        data.update(_deformed_states(served, index, shells, C10s, R))
     if study.outputs.loading_curves:
         L = ("t_over_R", "h_over_R", "loading_state")
         data["loading_delta"] = (L, length_mm(load["delta"], R), _attrs(
@@ -172,7 +181,115 @@ def build(plan: Plan, served: dict, failed: dict, history: str = "") -> xr.Datas
     if study.outputs.loading_curves:
         coords["loading_state"] = ("loading_state", np.arange(n_load), _attrs(
             "1", "index of the loading state (increasing delta)"))
+    for dim, long_name in _INDEX_DIMS.items():
+        if any(dim in v[0] for v in data.values()):
+            n = max(np.shape(v[1])[v[0].index(dim)] for v in data.values() if dim in v[0])
+            coords[dim] = (dim, np.arange(n), _attrs("1", long_name))
     return xr.Dataset(data, coords=coords, attrs=_global_attrs(plan, history))
+
+
+_INDEX_DIMS = {
+    "relaxation": "index of the relaxation path (increasing held contact radius)",
+    "relaxation_state": "index along a relaxation path (delta decreasing from loading)",
+    "profile": "index of the kept deformed state (loading, then relaxation)",
+    "outer_node": "outer-surface node, from the axis to the rim",
+    "inner_node": "inner-surface node, from the axis to the rim",
+    "stress_map": "index of the kept von Mises map (end of loading, then relaxation)",
+    "node": "finite-element node",
+    "triangle": "plotting triangle (8 per quadratic element)",
+    "vertex": "vertex of a triangle",
+}
+
+
+def _padded(shells, items, width):
+    """(t, h, len, *width) NaN-padded array from {(j_t, j_h): list of arrays}."""
+    n = max([len(v) for v in items.values()], default=0)
+    out = np.full(shells + (n, *width), np.nan)
+    for j, v in items.items():
+        for k, x in enumerate(v):
+            out[j + (k, *(slice(0, m) for m in np.shape(x)))] = x
+    return out
+
+
+def _relaxation_curves(served, index, shells, C10s, R) -> dict:
+    """Every relaxation path of each shell (the raw material of Maugis' method)."""
+    rel = {(index["t_over_R"][t], index["h_over_R"][h]): ps.relaxations
+           for (t, h), (_, ps) in served.items()}
+    width = (max([len(r.delta) for v in rel.values() for r in v], default=0),)
+    delta = _padded(shells, {j: [r.delta for r in v] for j, v in rel.items()}, width)
+    P = _padded(shells, {j: [r.P for r in v] for j, v in rel.items()}, width)
+    U = _padded(shells, {j: [r.U for r in v] for j, v in rel.items()}, width)
+    a = _padded(shells, {j: [r.a for r in v] for j, v in rel.items()}, ())
+    used = _padded(shells, {j: [float(not (r.centre_lifts or r.penetration)) for r in v]
+                            for j, v in rel.items()}, ())
+    c = C10s[:, None, None, None, None]
+    S, K = ("t_over_R", "h_over_R", "relaxation"), ("t_over_R", "h_over_R", "relaxation",
+                                                    "relaxation_state")
+    return {
+        "relaxation_a": (S, length_mm(a, R), _attrs("mm", "held contact radius a of the path")),
+        "relaxation_used": (S, used, _attrs(
+            "1", "path used by the energy method (1), or left out because the centre lifts "
+                 "or a free node touches (0)")),
+        "relaxation_delta": (K, length_mm(delta, R), _attrs(
+            "mm", "rim displacement delta along the relaxation at fixed contact radius")),
+        "relaxation_P": (("C10", *K), force_N(P[None], c, R), _attrs(
+            "N", "rim force P along the relaxation at fixed contact radius")),
+        "relaxation_U": (("C10", *K), energy_mJ(U[None], c, R), _attrs(
+            "mJ", "strain energy U_E along the relaxation at fixed contact radius")),
+    }
+
+
+def _deformed_states(served, index, shells, C10s, R) -> dict:
+    """Deformed profiles and von Mises maps kept by each shell's FE paths."""
+    from solver.postprocess import Profile, StressMap
+    prof, maps = {}, {}
+    for (t, h), (_, ps) in served.items():
+        j = (index["t_over_R"][t], index["h_over_R"][h])
+        prof[j] = [v for v in ps.views if isinstance(v, Profile)]
+        maps[j] = [v for v in ps.views if isinstance(v, StressMap)]
+    out = {}
+    dims = ("t_over_R", "h_over_R")
+    for kind, items, dim in (("profile", prof, "profile"), ("map", maps, "stress_map")):
+        stage = _padded(shells, {j: [0.0] * len(v) for j, v in items.items()}, ()).astype(object)
+        stage[:] = ""
+        for j, v in items.items():
+            for k, x in enumerate(v):
+                stage[j + (k,)] = x.stage
+        scal = {k: _padded(shells, {j: [getattr(x, k) for x in v] for j, v in items.items()}, ())
+                for k in ("a", "delta", "P")}
+        what = "deformed state" if kind == "profile" else "von Mises map"
+        out[f"{kind}_stage"] = ((*dims, dim), stage, _attrs(
+            "1", f"stage of the {what}: loading, or relaxation at its fixed contact radius"))
+        out[f"{kind}_a"] = ((*dims, dim), length_mm(scal["a"], R), _attrs(
+            "mm", f"contact radius a of the {what}"))
+        out[f"{kind}_delta"] = ((*dims, dim), length_mm(scal["delta"], R), _attrs(
+            "mm", f"rim displacement delta of the {what}"))
+        out[f"{kind}_P"] = (("C10", *dims, dim), force_N(scal["P"][None], C10s[:, None, None, None], R),
+                            _attrs("N", f"rim force P of the {what}"))
+    for side in ("outer", "inner"):
+        width = (max([getattr(x, side).shape[1] for v in prof.values() for x in v], default=0),)
+        for i, c in enumerate("rz"):
+            arr = _padded(shells, {j: [getattr(x, side)[i] for x in v] for j, v in prof.items()},
+                          width)
+            out[f"profile_{side}_{c}"] = ((*dims, "profile", f"{side}_node"), length_mm(arr, R),
+                                          _attrs("mm", f"deformed {c} of the {side} surface"
+                                                       + (" (plane at z = 0)" if c == "z" else "")))
+    width = (max([x.nodes.shape[1] for v in maps.values() for x in v], default=0),)
+    M = (*dims, "stress_map", "node")
+    for i, c in enumerate("rz"):
+        arr = _padded(shells, {j: [x.nodes[i] for x in v] for j, v in maps.items()}, width)
+        out[f"map_{c}"] = (M, length_mm(arr, R), _attrs("mm", f"deformed {c} of every node"))
+    vm = _padded(shells, {j: [x.von_mises for x in v] for j, v in maps.items()}, width)
+    out["map_von_mises"] = (("C10", *M), vm[None] * C10s[:, None, None, None, None], _attrs(
+        "MPa", "von Mises stress at the nodes (lumped L2 projection)"))
+    ntri = max([v[0].triangles.shape[0] for v in maps.values() if v], default=0)
+    tri = np.full(shells + (ntri, 3), -1, dtype=np.int32)
+    for j, v in maps.items():
+        if v:
+            tri[j][:len(v[0].triangles)] = v[0].triangles
+    out["map_triangles"] = ((*dims, "triangle", "vertex"), tri, _attrs(
+        "1", "node indices of the plotting triangles (-1: padding)"))
+    return out
 
 
 def _global_attrs(plan: Plan, history: str) -> dict:

@@ -86,12 +86,17 @@ def make_plan(study: Study, settings: Settings = Settings()) -> Plan:
 def restrict(ps: PathSet, delta_max: float) -> PathSet:
     """The part of a path set a run to `delta_max` computes: loading states and
     relaxation starts with delta <= delta_max (identical to a run that stops there,
-    apart from that run's last, clipped loading step)."""
+    apart from that run's last, clipped loading step), and the views inside that range
+    (a run that stops there keeps others: views are illustrations, not results)."""
     if ps.delta_max <= delta_max * (1 + _REL_TOL):
         return ps
     lim = delta_max * (1 + _REL_TOL)
     keep = ps.loading_delta <= lim
+    relaxations = tuple(r for r in ps.relaxations if r.delta[0] <= lim)
+    held = {r.a for r in relaxations}
+    views = tuple(v for v in ps.views
+                  if (v.stage == "loading" and v.delta <= lim) or v.a in held and v.stage != "loading")
     return replace(ps, delta_max=delta_max, loading_delta=ps.loading_delta[keep],
                    loading_P=ps.loading_P[keep], loading_a=ps.loading_a[keep],
                    loading_U=ps.loading_U[keep], loading_joined=ps.loading_joined[keep],
-                   relaxations=tuple(r for r in ps.relaxations if r.delta[0] <= lim))
+                   relaxations=relaxations, views=views)

@@ -1,5 +1,5 @@
 """Running a study: validate, plan, take what the catalogue holds, compute the rest on
-dask, write the results cube.
+dask, write the results cube, then its tables and figures (study.products).
 
 The loading of a shell is one task and each of its relaxation paths another; workers only
 compute.  This (client) process stores every finished path set in the catalogue at once,
@@ -26,12 +26,14 @@ from tqdm import tqdm
 import solver
 from catalogue import Catalogue
 from catalogue.fingerprint import solver_source_sha256
-from solver.case import pathset_of, relaxation_starts, relaxation_task, solve_loading
+from solver.case import (loading_views, pathset_of, relaxation_starts, relaxation_task,
+                         solve_loading)
 from solver.path import LoadingPath, Settings
 
 from . import dataset
 from .config import StudyError, load_study
 from .plan import Plan, Shell, make_plan, restrict
+from .products import Products, write_products
 
 DEFAULT_OUT = "results"
 
@@ -49,7 +51,7 @@ def _check_source(source_sha256):
 
 def loading_task(t, h, interface, mesh, delta_max, settings, source_sha256=None):
     """Loading path of one shell: (loading without displacement fields, relaxation
-    starts, info)."""
+    starts, info, loading views)."""
     _check_source(source_sha256)
     t0 = time.perf_counter()
     d, loading = solve_loading(t, h, interface, mesh, delta_max, settings)
@@ -58,14 +60,15 @@ def loading_task(t, h, interface, mesh, delta_max, settings, source_sha256=None)
                         tuple(replace(s, x=s.x[:0]) for s in loading.states), loading.timer)
     info = dict(dofs=int(d.ndof), elements=int(d.capmesh.mesh.nelements),
                 loading_s=time.perf_counter() - t0)
-    return light, starts, info
+    return light, starts, info, loading_views(d, loading)
 
 
-def relax_task(t, h, interface, mesh, start, gamma_max, settings, source_sha256=None):
-    """One relaxation path: (Relaxation, seconds)."""
+def relax_task(t, h, interface, mesh, start, gamma_max, settings, source_sha256=None,
+               views=False):
+    """One relaxation path: (Relaxation, seconds); `views` keeps its profiles."""
     _check_source(source_sha256)
     t0 = time.perf_counter()
-    r = relaxation_task(t, h, interface, mesh, start, gamma_max, settings)
+    r = relaxation_task(t, h, interface, mesh, start, gamma_max, settings, views)
     return r, time.perf_counter() - t0
 
 
@@ -117,6 +120,7 @@ class _Job:
     t0: float
     loading: object = None
     info: dict = None
+    views: tuple = ()
     relaxations: list = None
     seconds: float = 0.0
     remaining: int = 0
@@ -170,7 +174,7 @@ def compute(plan: Plan, shells, cat: Catalogue, client, computed: dict, failed: 
                      assembly_s=timer.assembly, linear_solve_s=timer.solve,
                      relaxation_s=job.seconds)
         ps = pathset_of(s.t_over_R, s.h_over_R, st.interface, st.mesh, st.delta_max_over_R,
-                        s.gamma_max_hat, job.loading, job.relaxations, stats)
+                        s.gamma_max_hat, job.loading, job.relaxations, stats, job.views)
         cat.store(s.key, ps, {"wall_s": time.perf_counter() - job.t0}, study=st.name)
         computed[s.fingerprint] = ps
 
@@ -187,7 +191,7 @@ def compute(plan: Plan, shells, cat: Catalogue, client, computed: dict, failed: 
                 continue
             s = job.shell
             if k is None:
-                job.loading, starts, job.info = f.result()
+                job.loading, starts, job.info, job.views = f.result()
                 job.relaxations = [None] * len(starts)
                 job.remaining = len(starts)
                 bar.total += len(starts)
@@ -195,8 +199,8 @@ def compute(plan: Plan, shells, cat: Catalogue, client, computed: dict, failed: 
                 for i, start in enumerate(starts):
                     g = client.submit(relax_task, s.t_over_R, s.h_over_R, st.interface, st.mesh,
                                       start, s.gamma_max_hat, plan.settings,
-                                      s.key["solver_source"], pure=False,
-                                      key=f"relax-{s.fingerprint[:12]}-{i}-{uuid.uuid4().hex[:8]}")
+                                      s.key["solver_source"], i == len(starts) - 1,
+                                      pure=False, key=f"relax-{s.fingerprint[:12]}-{i}-{uuid.uuid4().hex[:8]}")
                     owner[g.key] = (job, i)
                     job.futures.append(g)
                     ac.add(g)
@@ -229,6 +233,7 @@ class Outcome:
     wall_s: float
     catalogue: Path
     discarded: list         # catalogue entries found corrupt and dropped
+    products: Products = None   # tables and figures written from the cube
 
 
 def run(study_path, out_dir=DEFAULT_OUT, scheduler=None, catalogue_dir=None, progress=True,
@@ -276,13 +281,17 @@ def run(study_path, out_dir=DEFAULT_OUT, scheduler=None, catalogue_dir=None, pro
                    f"{solver.__version__}: run_study {study.source}")
         ds = dataset.build(plan, served, failed_th, history)
         dataset.write(ds, output)
+        try:
+            products = write_products(output)
+        except Exception as e:      # the cube is written; a drawing bug must not lose it
+            products = Products(skipped={"tables and figures": _reason("products", e)})
         counts = dataset.summary_counts(ds)
         bad = counts["solver failed"] + counts["out of range"]
         code = 1 if failed or bad else 0
         wall = time.perf_counter() - t0
         cat.finish_run(run_id, code, len(computed), len(reused), len(failed), wall)
         return Outcome(code, output, plan, list(computed), reused, failed, counts, wall,
-                       cat.dir, list(cat.discarded))
+                       cat.dir, list(cat.discarded), products)
     finally:
         cat.close()
 
@@ -317,6 +326,15 @@ def summary(outcome: Outcome, ds=None) -> str:
             shown += 1
     for d in outcome.discarded:
         lines.append(f"  discarded a corrupt catalogue entry: {d}")
+    pr = outcome.products
+    if pr is not None:
+        if pr.tables:
+            lines.append(f"tables: {len(pr.tables)} files in {pr.tables[0].parent}")
+        if pr.figures:
+            lines.append(f"figures: {len(pr.figures)} files in {pr.figures[0].parent} "
+                         f"({pr.seconds.get('total', 0):.1f} s for tables and figures)")
+        for name, why in pr.skipped.items():
+            lines.append(f"  skipped {name}: {why}")
     lines.append(f"wall time {outcome.wall_s:.1f} s; results in {outcome.output}")
     return "\n".join(lines)
 

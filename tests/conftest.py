@@ -35,3 +35,57 @@ def base_case(mesh="coarse", interface="no_slip", gamma_max=0.006, delta_max=0.2
 @pytest.fixture(scope="session")
 def base_coarse():
     return base_case("coarse")
+
+
+# a small real study (coarse mesh): the paper's base shell with a short sweep of each
+# parameter; 3 FE path sets, read by the analysis, table and figure tests
+SMALL_STUDY = """\
+name: small
+description: small coarse study around the paper's base shell (tests)
+R_mm: 20
+base: {C10_MPa: 0.3, t_over_R: 0.15, h_over_R: 1.0, gamma_J_m2: 30}
+sweeps:
+  C10_MPa: [0.2, 0.3, 0.5]
+  t_over_R: [0.15, 0.2]
+  h_over_R: [0.9, 1.0]
+  gamma_J_m2: [20, 30, 40]
+mesh: coarse
+delta_max_over_R: 0.1
+"""
+
+
+@pytest.fixture(scope="session")
+def small_study(tmp_path_factory):
+    """Path of the small study's results netCDF (computed once per session)."""
+    from study.run import run
+    d = tmp_path_factory.mktemp("small")
+    (d / "small.yaml").write_text(SMALL_STUDY)
+    outcome = run(d / "small.yaml", d / "results", catalogue_dir=d / "cat", progress=False)
+    assert outcome.exit_code == 0, outcome.failed
+    return outcome.output
+
+
+# names through which the finite-element solver can be entered (as defined and as imported)
+FE_ENTRY_POINTS = {
+    "solver.path": ("load", "relax", "tangent"),
+    "solver.forms": ("tangent",),
+    "solver.case": ("load", "relax", "solve_paths", "solve_loading", "relaxation_task"),
+    "solver": ("solve_paths", "solve_loading", "relaxation_task"),
+    "study.run": ("solve_loading", "relaxation_task"),
+}
+
+
+@pytest.fixture
+def forbid_fe(monkeypatch):
+    """Make every entry into the FE solver raise (for code that must only read results)."""
+    import importlib
+
+    def forbidden(name):
+        def call(*args, **kwargs):
+            raise AssertionError(f"{name} was called: this code must not run the FE solver")
+        return call
+
+    for module, names in FE_ENTRY_POINTS.items():
+        mod = importlib.import_module(module)
+        for name in names:
+            monkeypatch.setattr(mod, name, forbidden(f"{module}.{name}"))

@@ -33,6 +33,12 @@ def assert_same_pathset(a: PathSet, b: PathSet):
             for r, s in zip(x, y):
                 for g in fields(Relaxation):
                     np.testing.assert_array_equal(getattr(r, g.name), getattr(s, g.name))
+        elif f.name == "views":
+            assert len(x) == len(y) > 0
+            for v, w in zip(x, y):
+                assert type(v) is type(w)
+                for g in fields(v):
+                    np.testing.assert_array_equal(getattr(v, g.name), getattr(w, g.name))
         elif isinstance(x, np.ndarray):
             np.testing.assert_array_equal(x, y)
         else:

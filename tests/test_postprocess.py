@@ -36,3 +36,26 @@ def test_total_energy_minimum_is_the_equilibrium(base_coarse):
     assert abs(a_min - eq.a[i]) <= 1.5 * spacing
     A, UT = total_energy_fixed_grips(surface, gamma, eq.delta[i])
     assert abs(np.sqrt(A[np.argmin(UT)] / np.pi) - eq.a[i]) <= 1.5 * spacing
+
+
+def test_nodal_von_mises_is_exact_for_a_homogeneous_stretch(base_coarse):
+    """Uniaxial stretch lam along z of the whole cap (incompressible, any pressure):
+    sigma_vm = 2 C10 (lam^2 - 1/lam) at every node, the axis included."""
+    from solver.postprocess import nodal_von_mises, triangles
+    _, d, _ = base_coarse
+    lam = 1.3
+    r, z = d.capmesh.nodes
+    x = np.zeros(d.ndof)
+    x[: d.n2] = (lam ** -0.5 - 1) * r
+    x[d.n2: 2 * d.n2] = (lam - 1) * z
+    x[2 * d.n2:] = 0.37                         # the multiplier does not enter von Mises
+    vm = nodal_von_mises(d, x)
+    np.testing.assert_allclose(vm, 2 * (lam ** 2 - 1 / lam), rtol=1e-12)
+    tri = triangles(d)
+    assert tri.shape == (8 * d.capmesh.mesh.nelements, 3)
+    # the triangles tile the cross-section: their areas add up to the meridian area
+    p = d.capmesh.nodes[:, tri]                 # (2, T, 3)
+    area = 0.5 * np.abs((p[0, :, 1] - p[0, :, 0]) * (p[1, :, 2] - p[1, :, 0])
+                        - (p[0, :, 2] - p[0, :, 0]) * (p[1, :, 1] - p[1, :, 0]))
+    meridian = float(np.sum(d.w / (2 * np.pi * d.r_q)))
+    assert area.sum() == pytest.approx(meridian, rel=2e-3)

@@ -1,0 +1,406 @@
+"""The paper's figures regenerated from a results cube (matplotlib; never runs the FE).
+
+Each `fig_*` function takes the Dataset written by `shell-adhesion run` and returns a
+`matplotlib.figure.Figure` (no pyplot state).  Shell-level figures are drawn for the
+study's base point unless `at` names other coordinates (C10 MPa, t_over_R, h_over_R,
+gamma J/m^2).  Units: lengths mm, forces N, energies mJ, stresses MPa; P > 0
+compression, delta > 0 approach.  Fig. 5 rebuilds U_E(a, delta) from the stored
+relaxation curves with `solver.energy` (interpolation only).
+
+    shell-adhesion plot results/paper.nc --out results/figures
+"""
+from pathlib import Path
+
+import numpy as np
+from matplotlib.figure import Figure
+from matplotlib.tri import Triangulation
+
+from solver.energy import (energy_surface, equilibrium, total_energy_fixed_grips,
+                           total_energy_fixed_load)
+from solver.theory import jkr_P_star_N, shell_law_scale_N
+
+from .analysis import along, base_point, eta_fit
+from .products import atomic_path
+
+SWEEPS = (("C10", "C10 [MPa]"), ("t_over_R", "t/R [1]"), ("h_over_R", "h/R [1]"),
+          ("gamma", "gamma [J/m$^2$]"))
+
+
+CLIP_PERCENTILE = 99.0
+
+
+class MissingData(ValueError):
+    """The cube lacks what a figure needs (e.g. written with that output turned off)."""
+
+
+def _point(ds, at):
+    """The base point (or `at` over it); MissingData unless it was evaluated."""
+    p = base_point(ds)
+    p.update(at or {})
+    status = str(ds["status"].sel(p).values)
+    if status != "ok":
+        raise MissingData(f"the point {p} was not evaluated ({status})")
+    return p
+
+
+def _any_ok(ds):
+    if not int((ds["status"] == "ok").sum()):
+        raise MissingData("no point of the study was evaluated")
+
+
+def _need(ds, *names):
+    missing = [n for n in names if n not in ds]
+    if missing:
+        raise MissingData(f"the cube has no {', '.join(missing)} (turn the study's outputs on)")
+
+
+def _shell(ds, p):
+    return dict(t_over_R=p["t_over_R"], h_over_R=p["h_over_R"])
+
+
+def _title(ds, p, with_gamma=True):
+    R = float(ds["R"])
+    s = (f"R = {R:g} mm, t = {p['t_over_R'] * R:g} mm, h = {p['h_over_R'] * R:g} mm, "
+         f"C10 = {p['C10']:g} MPa")
+    return s + (f", gamma = {p['gamma']:g} J/m$^2$" if with_gamma else "")
+
+
+def _section(ds, j, shell):
+    """(r, z) of the closed cross-section outline of profile j (outer, then inner back)."""
+    pr = ds[[f"profile_{s}_{c}" for s in ("outer", "inner") for c in "rz"]].sel(shell)
+    ro, zo = pr["profile_outer_r"].values[j], pr["profile_outer_z"].values[j]
+    ri, zi = pr["profile_inner_r"].values[j], pr["profile_inner_z"].values[j]
+    ro, zo = ro[~np.isnan(ro)], zo[~np.isnan(zo)]
+    ri, zi = ri[~np.isnan(ri)], zi[~np.isnan(zi)]
+    return np.concatenate([ro, ri[::-1]]), np.concatenate([zo, zi[::-1]])
+
+
+def fig_profiles(ds, at=None) -> Figure:
+    """Fig. 3: deformed cross-sections (a) under loading, (b) relaxing at the largest a."""
+    _need(ds, "profile_stage", "profile_outer_r")
+    p = _point(ds, at)
+    shell = _shell(ds, p)
+    stage = ds["profile_stage"].sel(shell).values.astype(str)
+    delta = ds["profile_delta"].sel(shell).values
+    P = ds["profile_P"].sel(C10=p["C10"], **shell).values
+    a = ds["profile_a"].sel(shell).values
+    fig = Figure(figsize=(10, 4.6), layout="constrained")
+    axes = fig.subplots(1, 2, sharey=True)
+    for ax, name in zip(axes, ("loading", "relaxation")):
+        idx = np.flatnonzero(stage == name)
+        colours = _colours(len(idx))
+        for c, j in zip(colours, idx):
+            r, z = _section(ds, j, shell)
+            ax.plot(r, z, color=c, lw=1.2,
+                    label=f"delta = {delta[j]:.2f} mm, P = {np.round(P[j], 2) + 0.0:.2f} N")
+        ax.axhline(0.0, color="k", lw=2)
+        ax.set_aspect("equal")
+        ax.set_xlabel("r [mm]")
+        ax.legend(fontsize=7, loc="upper left", frameon=False)
+        if name == "loading":
+            ax.set_title("(a) loading without adhesion (a grows with delta)", fontsize=10)
+        elif len(idx):
+            ax.set_title(f"(b) unloading at fixed a = {a[idx[0]]:.2f} mm", fontsize=10)
+        else:
+            ax.set_title("(b) no relaxation profiles stored", fontsize=10)
+    axes[0].set_ylabel("z [mm] (plane at z = 0)")
+    fig.suptitle(_title(ds, p, with_gamma=False), fontsize=10)
+    return fig
+
+
+def _colours(n):
+    from matplotlib import colormaps
+    return colormaps["viridis"](np.linspace(0, 0.9, max(n, 1)))
+
+
+def _relaxation(ds, p, k):
+    """(delta, P) of relaxation path k of the shell at `p` (NaN padding removed)."""
+    d = ds["relaxation_delta"].sel(_shell(ds, p)).values[k]
+    P = ds["relaxation_P"].sel(C10=p["C10"], **_shell(ds, p)).values[k]
+    keep = ~np.isnan(d)
+    return d[keep], P[keep]
+
+
+def fig_load_relaxation(ds, at=None, n_paths=8) -> Figure:
+    """Fig. 4: P(delta) on loading and on relaxation paths, with the energies of one
+    equilibrium state B shaded: U_E (loading area minus the area recovered along AB)
+    and the load's potential U_P = -P delta."""
+    _need(ds, "loading_delta", "loading_P", "relaxation_delta", "relaxation_P",
+          "a_eq", "delta_eq", "P_eq")
+    p = _point(ds, at)
+    shell = _shell(ds, p)
+    ld = ds["loading_delta"].sel(shell).values
+    lP = ds["loading_P"].sel(C10=p["C10"], **shell).values
+    keep = ~np.isnan(ld)
+    ld, lP = ld[keep], lP[keep]
+    ra = ds["relaxation_a"].sel(shell).values
+    n = int(np.sum(~np.isnan(ra)))
+    fig = Figure(figsize=(7.5, 5.2), layout="constrained")
+    ax = fig.subplots()
+    ax.plot(ld, lP, color="k", lw=2, label="loading, gamma = 0 (OA)")
+    # the shaded example: the path whose a is nearest the equilibrium at P = 0 (a0)
+    eq = ds[["a_eq", "delta_eq", "P_eq"]].sel(p, method=None)
+    a_eq, d_eq, P_eq = (eq[v].values[~np.isnan(eq["a_eq"].values)] for v in ("a_eq", "delta_eq", "P_eq"))
+    a0 = float(ds["a0"].sel(p))
+    target = a0 if np.isfinite(a0) else float(np.median(a_eq))
+    k = int(np.nanargmin(np.abs(ra - target)))
+    others = [i for i in range(n) if i != k]      # grey: n_paths - 1 others, evenly in a
+    pick = np.unique(np.linspace(0, len(others) - 1, min(n_paths - 1, len(others))).round())
+    for i in (others[int(j)] for j in pick):
+        d, P = _relaxation(ds, p, i)
+        ax.plot(d, P, color="0.55", lw=0.8)
+    d, P = _relaxation(ds, p, k)
+    dB = float(np.interp(ra[k], a_eq, d_eq))
+    PB = float(np.interp(dB, d[::-1], P[::-1]))
+    d1, P1 = d[0], P[0]
+    ax.plot(d, P, color="C0", lw=1.6, label=f"relaxation at a = {ra[k]:.2f} mm (AB)")
+    on = ld <= d1
+    UA = float(np.trapezoid(lP[on], ld[on]))
+    ax.fill_between(ld[on], 0, lP[on], color="C1", alpha=0.25,
+                    label=f"U_E at A = area under OA: {UA:.3g} mJ")
+    part = d >= dB
+    W = float(np.trapezoid(P[part][::-1], d[part][::-1]))
+    ax.fill_between(d[part], 0, P[part], facecolor="none", edgecolor="C0", hatch="//",
+                    label=f"signed area under AB, int P d(delta) = {W:.3g} mJ")
+    ax.fill_between([0, dB], 0, PB, color="C2", alpha=0.25,
+                    label=f"rectangle P delta at B = -U_P: {PB * dB:.3g} mJ")
+    A_B = np.pi * ra[k] ** 2
+    ax.text(0.98, 0.03, f"at B: U_E = {UA:.3g} - ({W:.3g}) = {UA - W:.3g} mJ, "
+            f"U_P = {-PB * dB:.3g} mJ,\ngamma A = {p['gamma'] * 1e-3 * A_B:.3g} mJ, "
+            f"U_T = U_E + U_P - gamma A = {UA - W - PB * dB - p['gamma'] * 1e-3 * A_B:.3g} mJ",
+            transform=ax.transAxes, ha="right", va="bottom", fontsize=8)
+    ax.plot([d1], [P1], "ko")
+    ax.plot([dB], [PB], "o", color="C3")
+    ax.annotate("A", (d1, P1), textcoords="offset points", xytext=(5, 5))
+    ax.annotate(f"B: equilibrium, gamma = {p['gamma']:g} J/m$^2$", (dB, PB),
+                textcoords="offset points", xytext=(8, -12))
+    ax.axhline(0, color="k", lw=0.5)
+    ax.axvline(0, color="k", lw=0.5)
+    ax.set_xlabel("rim displacement delta [mm] (approach > 0)")
+    ax.set_ylabel("rim force P [N] (compression > 0)")
+    ax.set_title(_title(ds, p), fontsize=9)
+    ax.legend(fontsize=8, loc="upper left")
+    return fig
+
+
+def _surface(ds, p):
+    """U_E(a, delta) of the shell at `p`, dimensionless, from the stored relaxation
+    curves (the paths the energy method used, as in PathSet.surface)."""
+    shell = _shell(ds, p)
+    R, C10 = float(ds["R"]), p["C10"]
+    a = ds["relaxation_a"].sel(shell).values
+    used = ds["relaxation_used"].sel(shell).values == 1
+    paths = []
+    for k in np.flatnonzero(used & ~np.isnan(a)):
+        d, P = _relaxation(ds, p, k)
+        U = ds["relaxation_U"].sel(C10=C10, **shell).values[k][:len(d)]
+        paths.append((a[k] / R, d / R, P / (C10 * R ** 2), U / (C10 * R ** 3)))
+    paths.sort(key=lambda x: x[0])
+    return energy_surface(paths)
+
+
+def fig_energy(ds, at=None, n_curves=7) -> Figure:
+    """Fig. 5: total energy U_T(A) at fixed load (above) and at fixed grips (below),
+    for loads from P* to -P* and displacements from delta_dagger to -delta_dagger, the
+    equilibrium locus G = gamma through their minima, and the pull-off states marked."""
+    _need(ds, "relaxation_U", "relaxation_used", "a_eq")
+    p = _point(ds, at)
+    R, C10 = float(ds["R"]), p["C10"]
+    g = p["gamma"] * 1e-3 / (C10 * R)
+    s = _surface(ds, p)
+    eq = equilibrium(s, g)
+    po = {k: float(ds[k].sel(p)) for k in ("P_star", "a_star", "delta_dagger", "a_dagger",
+                                           "P_dagger")}
+    units = (R ** 2, C10 * R ** 3)         # mm^2 and mJ per dimensionless unit
+    fig = Figure(figsize=(7.5, 9), layout="constrained")
+    top, bottom = fig.subplots(2, 1)
+    P_star = po["P_star"] / (C10 * R ** 2)
+    hi = min(np.max(eq.P[eq.stable_fixed_load]), -P_star)
+    _family(top, lambda P: total_energy_fixed_load(s, g, P), np.linspace(P_star, hi, n_curves),
+            lambda P: f"P = {P * C10 * R ** 2:.2f} N", units,
+            (P_star, po["a_star"] / R, f"fixed-load pull-off P* = {po['P_star']:.3f} N"))
+    top.set_title(f"(a) fixed load; {_title(ds, p)}", fontsize=9)
+    d_dagger = po["delta_dagger"] / R
+    hi = min(np.max(eq.delta[eq.stable_fixed_grips]), -d_dagger)
+    _family(bottom, lambda d: total_energy_fixed_grips(s, g, d),
+            np.linspace(d_dagger, hi, n_curves), lambda d: f"delta = {d * R:.3f} mm", units,
+            (d_dagger, po["a_dagger"] / R, f"fixed-grips pull-off delta = "
+             f"{po['delta_dagger']:.3f} mm, P = {po['P_dagger']:.3f} N"))
+    bottom.set_title("(b) fixed grips", fontsize=9)
+    for ax in (top, bottom):
+        ax.set_xlabel("contact area A = pi a$^2$ [mm$^2$]")
+        ax.set_ylabel("total energy U_T [mJ]")
+        ax.set_xlim(left=0)
+        ax.legend(fontsize=7, loc="best")
+    return fig
+
+
+def _family(ax, energy, levels, label, units, pull_off):
+    """U_T(A) curves at each level (the first is the pull-off one, drawn last in red),
+    their interior minima and the locus through them; clipped to 1.6 times the largest
+    equilibrium area."""
+    A_u, U_u = units
+    curves = [(level, *energy(level)) for level in levels[1:]]
+    curves = [c for c in curves if len(c[1]) >= 3]
+    minima = [(i, _interior_minimum(UT)) for i, (_, _, UT) in enumerate(curves)]
+    minima = [(i, j) for i, j in minima if j is not None]
+    A_max = 1.6 * max([curves[i][1][j] for i, j in minima], default=np.inf)
+    for c, (level, A, UT) in zip(_colours(len(curves)), curves):
+        keep = A <= A_max
+        ax.plot(A[keep] * A_u, UT[keep] * U_u, color=c, lw=1.2, label=label(level))
+    colours = _colours(len(curves))
+    for i, j in minima:
+        _, A, UT = curves[i]
+        ax.plot(A[j] * A_u, UT[j] * U_u, "o", mfc="none", color=colours[i])
+    ax.plot([curves[i][1][j] * A_u for i, j in minima], [curves[i][2][j] * U_u for i, j in minima],
+            "k--", lw=1, label="equilibrium G = gamma (minima)")
+    level, a, text = pull_off
+    A, UT = energy(level)
+    if len(A) >= 2:
+        keep = A <= A_max
+        A0 = np.pi * a ** 2
+        ax.plot(A[keep] * A_u, UT[keep] * U_u, color="C3", lw=1.8, label=text)
+        ax.plot([A0 * A_u], [np.interp(A0, A, UT) * U_u], "*", color="C3", ms=12)
+
+
+def _interior_minimum(U):
+    i = int(np.argmin(U))
+    return i if 0 < i < len(U) - 1 else None
+
+
+def fig_contact_radius(ds) -> Figure:
+    """Fig. 6a: contact radius a against load P along each sweep of the study, one panel
+    per swept parameter, fixed-load pull-off (P*, a*) marked."""
+    _need(ds, "a_eq", "P_eq")
+    _any_ok(ds)
+    p = base_point(ds)
+    fig = Figure(figsize=(10, 8), layout="constrained")
+    axes = fig.subplots(2, 2).ravel()
+    for ax, (dim, label) in zip(axes, SWEEPS):
+        values = along(ds, "P_star", dim)[dim].values
+        for c, v in zip(_colours(len(values)), values):
+            q = dict(p, **{dim: float(v)})
+            a = ds["a_eq"].sel(q).values
+            P = ds["P_eq"].sel(q).values
+            keep = ~np.isnan(a)
+            ax.plot(P[keep], a[keep], color=c, lw=1.2, label=_value_label(dim, v))
+            ax.plot(float(ds["P_star"].sel(q)), float(ds["a_star"].sel(q)), "o", color=c)
+        ax.set_xlabel("P [N] (tension < 0)")
+        ax.set_ylabel("a [mm]")
+        ax.set_title(f"sweep of {label}" if len(values) > 1 else f"{label}: not swept",
+                     fontsize=9)
+        if len(values):
+            ax.legend(fontsize=7, loc="upper left")
+    fig.suptitle("contact radius on the equilibrium curve G = gamma; dots: pull-off (P*, a*)",
+                 fontsize=10)
+    return fig
+
+
+def _value_label(dim, v):
+    unit = {"C10": " MPa", "gamma": " J/m$^2$"}.get(dim, "")
+    name = {"t_over_R": "t/R", "h_over_R": "h/R"}.get(dim, dim)
+    return f"{name} = {v:g}{unit}"
+
+
+def fig_pull_off(ds) -> Figure:
+    """Fig. 6b: |P*| against each swept parameter, with JKR (1.5 pi R gamma) and the
+    linear-shell law eq. 3 with eta fitted over the evaluated shells (t/R < 1; all points
+    if there are none)."""
+    _any_ok(ds)
+    p = base_point(ds)
+    R = float(ds["R"])
+    shells = ds["t_over_R"] < 1                 # eq. 3 is a thin-shell law
+    fit = eta_fit(ds, where=shells if int(((ds["status"] == "ok") & shells).sum()) else None)
+    fig = Figure(figsize=(10, 8), layout="constrained")
+    axes = fig.subplots(2, 2).ravel()
+    for ax, (dim, label) in zip(axes, SWEEPS):
+        P = along(ds, "P_star", dim)
+        x = P[dim].values
+        q = [dict(p, **{dim: float(v)}) for v in x]
+        jkr = [-jkr_P_star_N(R, c["gamma"]) for c in q]
+        law = [fit.eta * shell_law_scale_N(R, c["t_over_R"] * R, c["C10"], c["gamma"]) for c in q]
+        ax.plot(x, -P.values, "o-", color="C0", label="|P*| (this study)")
+        ax.plot(x, jkr, "k--", label="JKR 1.5 pi R gamma")
+        ax.plot(x, law, ":", color="C3", label=f"eq. 3, eta = {fit.eta:.2f} (fit over {fit.n} cases)")
+        ax.set_xlabel(label)
+        ax.set_ylabel("|P*| [N]")
+        ax.set_title(f"sweep of {label}" if len(x) > 1 else f"{label}: not swept", fontsize=9)
+        ax.legend(fontsize=7)
+    fig.suptitle(f"fixed-load pull-off force; others at the base point ({_title(ds, p)})",
+                 fontsize=9)
+    return fig
+
+
+def fig_von_mises(ds, at=None) -> Figure:
+    """Von Mises stress on the deformed shell (like the paper's Fig. 2): at the end of
+    loading and on the widest relaxation path near delta = 0."""
+    _need(ds, "map_r", "map_von_mises", "map_triangles")
+    p = _point(ds, at)
+    shell = _shell(ds, p)
+    m = ds[["map_stage", "map_a", "map_delta", "map_r", "map_z", "map_triangles"]].sel(shell)
+    P = ds["map_P"].sel(C10=p["C10"], **shell).values
+    vm = ds["map_von_mises"].sel(C10=p["C10"], **shell).values
+    tri = m["map_triangles"].values
+    tri = tri[tri[:, 0] >= 0]
+    n = int(np.sum(m["map_stage"].values.astype(str) != ""))
+    fig = Figure(figsize=(5.5 * max(n, 1), 4.8), layout="constrained")
+    axes = np.atleast_1d(fig.subplots(1, max(n, 1)))
+    # the contact edge is a crack tip (stress singular under tension): clip the colour
+    # scale at a high percentile so the rest of the shell stays readable
+    top = float(np.nanpercentile(vm[:n], CLIP_PERCENTILE)) if n else 1.0
+    for j, ax in enumerate(axes[:n]):
+        r, z = m["map_r"].values[j], m["map_z"].values[j]
+        used = np.unique(tri)
+        r, z = r[: used.max() + 1], z[: used.max() + 1]
+        art = ax.tripcolor(Triangulation(r, z, tri), vm[j][: used.max() + 1],
+                           shading="gouraud", cmap="jet", vmin=0, vmax=top)
+        ax.axhline(0, color="k", lw=2)
+        ax.set_aspect("equal")
+        ax.set_xlabel("r [mm]")
+        ax.set_ylabel("z [mm]")
+        stage = str(m["map_stage"].values[j])
+        ax.set_title(f"({'ab'[j]}) {stage}: delta = {float(m['map_delta'].values[j]):.2f} mm, "
+                     f"P = {P[j]:.2f} N, a = {float(m['map_a'].values[j]):.2f} mm", fontsize=9)
+    if n:
+        fig.colorbar(art, ax=list(axes[:n]), label="von Mises stress [MPa]", shrink=0.8,
+                     extend="max")
+    note = (f"\ncolour scale clipped at the {CLIP_PERCENTILE:g}th percentile of the nodal values; "
+            f"largest {np.nanmax(vm[:n]):.3g} MPa (at the contact edge)" if n else "")
+    fig.suptitle(_title(ds, p, with_gamma=False) + note, fontsize=10)
+    return fig
+
+
+FIGURES = {
+    "fig2_von_mises": fig_von_mises,
+    "fig3_profiles": fig_profiles,
+    "fig4_load_relaxation": fig_load_relaxation,
+    "fig5_energy": fig_energy,
+    "fig6a_contact_radius": fig_contact_radius,
+    "fig6b_pull_off": fig_pull_off,
+}
+
+
+def _save(fig: Figure, path: Path, dpi):
+    """Write atomically (a reader never sees half a file)."""
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, format=path.suffix[1:], dpi=dpi)
+
+
+def write_figures(ds, out_dir, formats=("png", "pdf"), dpi=150) -> tuple:
+    """Draw every figure the cube has data for into `out_dir`: (written paths,
+    {figure: reason} for those skipped)."""
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    written, skipped = [], {}
+    for name, draw in FIGURES.items():
+        try:
+            fig = draw(ds)
+        except (MissingData, ValueError, KeyError) as e:
+            skipped[name] = f"{type(e).__name__}: {e}"
+            continue
+        for fmt in formats:
+            path = out / f"{name}.{fmt}"
+            _save(fig, path, dpi)
+            written.append(path)
+            fig.set_layout_engine("none")   # laid out once: the other formats reuse it
+    return written, skipped

@@ -1,0 +1,106 @@
+"""Tables from a results cube: one row per evaluated case, and our numbers beside the
+paper's; rendered as CSV, GitHub Markdown or LaTeX (booktabs).
+
+CSV keeps full precision (shortest round-trip repr: reading it back gives the cube's
+values exactly); Markdown and LaTeX show `DIGITS` significant digits.  A missing value
+is empty in CSV and "—" otherwise.  Units are in the column headers (mm, N, MPa, J/m^2).
+Never runs the solver.
+"""
+import csv
+from dataclasses import dataclass
+import io
+import math
+import numbers
+
+from tabulate import tabulate
+import xarray as xr
+
+from .analysis import ok_cases, paper_comparison, R_mm
+
+DIGITS = 4
+FORMATS = ("csv", "md", "tex")
+
+# cube variable -> column label (the unit comes from the cube's attributes)
+_CASE_COLUMNS = {"C10": "C10", "gamma": "gamma", "P_star": "P*", "delta_star": "delta*",
+                 "a_star": "a*", "P_dagger": "P_dagger", "delta_dagger": "delta_dagger",
+                 "a_dagger": "a_dagger", "a0": "a0", "eta": "eta"}
+_UNITS_TEXT = {"J m-2": "J/m^2"}
+
+
+@dataclass(frozen=True)
+class Table:
+    """A titled table: column headers (units in brackets), rows of numbers or text
+    (None or NaN: missing), and notes printed under it (Markdown and LaTeX only)."""
+    title: str
+    columns: tuple
+    rows: tuple
+    notes: tuple = ()
+
+
+def _header(ds, name, label):
+    unit = ds[name].attrs.get("units", "1")
+    return f"{label} [{_UNITS_TEXT.get(unit, unit)}]"
+
+
+def cases_table(ds: xr.Dataset) -> Table:
+    """One row per point with status "ok": R, t, h [mm], C10 [MPa], gamma [J/m^2], the
+    pull-off values (P* [N], delta*, a* [mm], P_dagger [N], delta_dagger, a_dagger, a0 [mm])
+    and eta [1]."""
+    c = ok_cases(ds)
+    R = R_mm(ds)
+    columns = ("R [mm]", _header(ds, "t_mm", "t"), _header(ds, "h_mm", "h"),
+               *(_header(ds, k, label) for k, label in _CASE_COLUMNS.items()))
+    data = [c[k].values for k in ("t_mm", "h_mm", *_CASE_COLUMNS)]
+    rows = tuple((R, *(float(x[i]) for x in data)) for i in range(c.sizes["case"]))
+    study = ds.attrs.get("study_name", "")
+    title = (f"Pull-off of each case (study {study}, mesh {ds.attrs.get('mesh', '?')}, "
+             f"interface {ds.attrs.get('interface', '?')})")
+    return Table(title, columns, rows)
+
+
+def comparison_table(ds: xr.Dataset) -> Table:
+    """Our numbers beside the paper's (`study.analysis.paper_comparison`); the quantities
+    the cube cannot answer are listed in the notes."""
+    cmp = paper_comparison(ds)
+    columns = ("quantity", "paper", "ours", "unit", "difference [%]", "note")
+    rows = tuple((r.quantity, r.paper, r.ours, r.unit, r.difference_pct, r.note)
+                 for r in cmp.rows)
+    notes = ("Not answered by this cube: " + "; ".join(cmp.skipped) + ".",) if cmp.skipped else ()
+    return Table("Our numbers beside the paper's (DESIGN.md section 4)", columns, rows, notes)
+
+
+def _missing(x) -> bool:
+    return x is None or (isinstance(x, numbers.Real) and not math.isfinite(x))
+
+
+def _cell(x, fmt):
+    if _missing(x):
+        return "" if fmt == "csv" else "—"
+    if isinstance(x, numbers.Real) and not isinstance(x, bool):
+        return repr(float(x)) if fmt == "csv" else f"{float(x):.{DIGITS}g}"
+    return str(x).replace("|", "\\|") if fmt == "md" else str(x)
+
+
+def render(table: Table, fmt: str) -> str:
+    """The table as text in `fmt`: "csv", "md" (GitHub) or "tex" (booktabs tabular)."""
+    if fmt not in FORMATS:
+        raise ValueError(f"format {fmt!r}: must be one of {', '.join(FORMATS)}")
+    cells = [[_cell(x, fmt) for x in row] for row in table.rows]
+    if fmt == "csv":
+        out = io.StringIO()
+        writer = csv.writer(out, lineterminator="\n")
+        writer.writerow(table.columns)
+        writer.writerows(cells)
+        return out.getvalue()
+    lead = "" if fmt == "md" else "% "
+    if table.rows:
+        numeric = [all(_missing(x) or isinstance(x, numbers.Real) for x in col)
+                   for col in zip(*table.rows)]
+        text = tabulate(cells, headers=table.columns, disable_numparse=True,
+                        tablefmt="github" if fmt == "md" else "latex_booktabs",
+                        colalign=["right" if n else "left" for n in numeric])
+    else:
+        text = lead + "(no rows)"
+    if table.notes:
+        text += "\n\n" + "\n".join(lead + n for n in table.notes)
+    return text + "\n"

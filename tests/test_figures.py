@@ -1,0 +1,182 @@
+"""The paper's figures from a small real study: axes, units and curves checked through
+matplotlib's objects, the data behind them against the cube, and no FE solve."""
+import numpy as np
+import pytest
+import xarray as xr
+from matplotlib.collections import PolyCollection, TriMesh
+
+from solver.energy import equilibrium, pull_off
+from study import figures
+from study.analysis import along, base_point
+
+
+@pytest.fixture(scope="module")
+def ds(small_study):
+    with xr.open_dataset(small_study) as d:
+        return d.load()
+
+
+def labelled_lines(ax):
+    return [l for l in ax.get_lines() if not l.get_label().startswith("_")]
+
+
+def units_on(ax, x_unit, y_unit):
+    return f"[{x_unit}]" in ax.get_xlabel() and f"[{y_unit}]" in ax.get_ylabel()
+
+
+def test_the_cube_keeps_what_the_figures_need(ds):
+    base = base_point(ds)
+    shell = dict(t_over_R=base["t_over_R"], h_over_R=base["h_over_R"])
+    # relaxation curves scale exactly with C10 (one set of FE paths)
+    P = ds["relaxation_P"].sel(shell)
+    np.testing.assert_allclose(P.sel(C10=0.2), P.sel(C10=0.3) * (0.2 / 0.3), rtol=1e-13)
+    # the outer surface never goes below the plane; the held zone lies on it
+    z = ds["profile_outer_z"].sel(shell).values
+    assert np.nanmin(z) > -1e-9
+    assert set(ds["profile_stage"].sel(shell).values) == {"loading", "relaxation"}
+    assert (ds["map_von_mises"].sel(shell) >= 0).all()
+    # the loading stress map is the last loading state
+    last = int(ds["loading_delta"].sel(shell).notnull().sum()) - 1
+    assert float(ds["map_delta"].sel(shell)[0]) == float(ds["loading_delta"].sel(shell)[last])
+
+
+def test_energy_surface_from_the_cube_gives_the_stored_pull_off(ds):
+    """The stored relaxation curves are the whole input of the energy method: P* rebuilt
+    from them equals the cube's P* (computed from the catalogue's path set)."""
+    p = base_point(ds)
+    R, C10 = float(ds["R"]), p["C10"]
+    po = pull_off(equilibrium(figures._surface(ds, p), p["gamma"] * 1e-3 / (C10 * R)))
+    assert po.P_star * C10 * R ** 2 == pytest.approx(float(ds["P_star"].sel(p)), rel=1e-12)
+    assert po.delta_dagger * R == pytest.approx(float(ds["delta_dagger"].sel(p)), rel=1e-12)
+
+
+def test_fig3_profiles(ds):
+    fig = figures.fig_profiles(ds)
+    left, right = fig.axes
+    stage = ds["profile_stage"].sel(t_over_R=0.15, h_over_R=1.0).values
+    assert len(labelled_lines(left)) == np.sum(stage == "loading") >= 5
+    assert len(labelled_lines(right)) == np.sum(stage == "relaxation") >= 5
+    assert units_on(left, "mm", "mm") and "[mm]" in right.get_xlabel()
+    # the deepest loading profile ends at the loaded rim: z = h - delta
+    r, z = labelled_lines(left)[-1].get_data()
+    d = float(ds["profile_delta"].sel(t_over_R=0.15, h_over_R=1.0)[np.sum(stage == "loading") - 1])
+    assert z.max() == pytest.approx(20.0 - d, abs=1e-9)
+
+
+def test_fig4_load_relaxation(ds):
+    fig = figures.fig_load_relaxation(ds)
+    (ax,) = fig.axes
+    assert units_on(ax, "mm", "N")
+    lines = ax.get_lines()
+    x, y = lines[0].get_data()
+    shell = dict(t_over_R=0.15, h_over_R=1.0)
+    np.testing.assert_array_equal(y, ds["loading_P"].sel(C10=0.3, **shell).dropna("loading_state"))
+    n_rel = int(ds["relaxation_a"].sel(shell).notnull().sum())
+    curves = [l for l in lines if len(l.get_xdata()) > 2]
+    assert len(curves) == 1 + min(8, n_rel)     # loading and the relaxation paths shown
+    fills = [c for c in ax.collections if isinstance(c, PolyCollection)]
+    assert len(fills) == 3                      # U_E at A, area under AB, P delta at B
+
+
+def test_fig5_energy_families(ds):
+    fig = figures.fig_energy(ds, n_curves=6)
+    top, bottom = fig.axes
+    for ax in (top, bottom):
+        assert units_on(ax, "mm$^2$", "mJ")
+        assert any("equilibrium" in l.get_label() for l in ax.get_lines())
+        assert any(l.get_marker() == "*" for l in ax.get_lines())     # pull-off marked
+    P_star = float(ds["P_star"].sel(base_point(ds)))
+    assert any(f"P* = {P_star:.3f} N" in l.get_label() for l in top.get_lines())
+    families = [l for l in labelled_lines(top) if l.get_label().startswith("P = ")]
+    assert 4 <= len(families) <= 6
+    assert len([l for l in labelled_lines(bottom) if l.get_label().startswith("delta = ")]) >= 4
+
+
+def test_fig6a_contact_radius_per_sweep(ds):
+    fig = figures.fig_contact_radius(ds)
+    assert len(fig.axes) == 4
+    for ax, (dim, _) in zip(fig.axes, figures.SWEEPS):
+        values = along(ds, "P_star", dim)
+        assert units_on(ax, "N", "mm")
+        assert len(labelled_lines(ax)) == values.size
+        dots = [l for l in ax.get_lines() if l.get_marker() == "o"]
+        np.testing.assert_array_equal([l.get_xdata()[0] for l in dots], values.values)
+
+
+def test_fig6b_pull_off_with_jkr_and_eta(ds):
+    fig = figures.fig_pull_off(ds)
+    assert len(fig.axes) == 4
+    for ax, (dim, _) in zip(fig.axes, figures.SWEEPS):
+        ours, jkr, law = ax.get_lines()
+        np.testing.assert_array_equal(ours.get_ydata(), -along(ds, "P_star", dim).values)
+        assert "[N]" in ax.get_ylabel() and "JKR" in jkr.get_label() and "eta" in law.get_label()
+    gamma_ax = fig.axes[3]
+    g = gamma_ax.get_lines()[1].get_xdata()
+    np.testing.assert_allclose(gamma_ax.get_lines()[1].get_ydata(), 1.5 * np.pi * 20.0 * g * 1e-3)
+
+
+def test_von_mises_map(ds):
+    fig = figures.fig_von_mises(ds)
+    maps = [ax for ax in fig.axes if any(isinstance(c, TriMesh) for c in ax.collections)]
+    assert len(maps) == 2
+    for ax in maps:
+        assert units_on(ax, "mm", "mm")
+    assert fig.axes[-1].get_ylabel() == "von Mises stress [MPa]"      # the colour bar
+    vm = ds["map_von_mises"].sel(C10=0.3, t_over_R=0.15, h_over_R=1.0)
+    mesh = [c for c in maps[0].collections if isinstance(c, TriMesh)][0]
+    assert mesh.get_clim()[1] == pytest.approx(np.nanpercentile(vm.values, figures.CLIP_PERCENTILE))
+    assert f"largest {float(vm.max()):.3g} MPa" in fig.get_suptitle()
+
+
+def test_write_figures_never_solves(ds, tmp_path, forbid_fe):
+    written, skipped = figures.write_figures(ds, tmp_path)
+    assert skipped == {}
+    assert sorted(p.name for p in written) == sorted(
+        f"{n}.{e}" for n in figures.FIGURES for e in ("png", "pdf"))
+    assert all(p.stat().st_size > 1000 for p in written)
+    assert not [p for p in tmp_path.iterdir() if p.name.endswith(".tmp")]
+    assert all(p.stat().st_mode & 0o044 for p in written)     # readable like any output
+
+
+def test_missing_outputs_are_skipped_with_the_reason(ds, tmp_path):
+    lean = ds.drop_vars([v for v in ds.data_vars if v.startswith(("profile_", "map_"))])
+    with pytest.raises(figures.MissingData, match="profile_stage"):
+        figures.fig_profiles(lean)
+    written, skipped = figures.write_figures(lean, tmp_path, formats=("png",))
+    assert set(skipped) == {"fig2_von_mises", "fig3_profiles"}
+    assert len(written) == len(figures.FIGURES) - 2
+
+
+def test_run_writes_tables_and_figures_beside_the_cube(small_study):
+    stem = small_study.with_suffix("")
+    tables = {p.name for p in stem.with_name(stem.name + "_tables").iterdir()}
+    assert tables == {f"{t}.{f}" for t in ("cases", "paper") for f in ("csv", "md", "tex")} | {
+        "analysis.txt"}
+    figs = {p.name for p in stem.with_name(stem.name + "_figures").iterdir()}
+    assert figs == {f"{n}.{e}" for n in figures.FIGURES for e in ("png", "pdf")}
+
+
+def test_plot_command(small_study, tmp_path, forbid_fe, capsys):
+    from study.cli import main
+    assert main(["plot", str(small_study), "--out", str(tmp_path / "f"), "--format", "png"]) == 0
+    assert len(list((tmp_path / "f").glob("*.png"))) == len(figures.FIGURES)
+    assert "6 files in" in capsys.readouterr().out
+    assert main(["plot", str(small_study), "--format", "png,gif"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--format" in err[0] and "gif" in err[0]
+    assert main(["plot", str(tmp_path / "nothing.nc")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "nothing.nc" in err[0]
+
+
+def test_a_base_without_some_factors_uses_the_middle_of_their_axis(ds, tmp_path):
+    """A grid-only factor has no base value: figures and tables still come out."""
+    import json
+    from study.products import write_tables
+    study = json.loads(ds.attrs["study"])
+    del study["base"]["C10_MPa"], study["base"]["gamma_J_m2"]
+    grid = ds.assign_attrs(study=json.dumps(study))
+    assert base_point(grid) == dict(C10=0.3, t_over_R=0.15, h_over_R=1.0, gamma=30.0)
+    written, skipped = figures.write_figures(grid, tmp_path / "f", formats=("png",))
+    assert skipped == {} and len(written) == len(figures.FIGURES)
+    assert len(write_tables(grid, tmp_path / "t")) == 7

@@ -250,11 +250,10 @@ def _deformed_states(served, index, shells, C10s, R) -> dict:
     out = {}
     dims = ("t_over_R", "h_over_R")
     for kind, items, dim in (("profile", prof, "profile"), ("map", maps, "stress_map")):
-        stage = _padded(shells, {j: [0.0] * len(v) for j, v in items.items()}, ()).astype(object)
-        stage[:] = ""
+        stage = np.full(shells + (max([len(v) for v in items.values()], default=0),), "",
+                        dtype=object)
         for j, v in items.items():
-            for k, x in enumerate(v):
-                stage[j + (k,)] = x.stage
+            stage[j][:len(v)] = [x.stage for x in v]
         scal = {k: _padded(shells, {j: [getattr(x, k) for x in v] for j, v in items.items()}, ())
                 for k in ("a", "delta", "P")}
         what = "deformed state" if kind == "profile" else "von Mises map"

@@ -7,16 +7,13 @@ contiguous ragged array: path k holds `relaxation_length[k]` consecutive samples
 deformed profiles along `profile` (outer and inner surface nodes), and stress maps along
 `stress_map` (deformed nodes, nodal von Mises / C10) over one triangulation.
 
-Files are written atomically (temporary file in the same folder, fsync, os.replace,
-fsync of the folder) and read from one in-memory copy, so the bytes checked against the
+Files are written atomically (catalogue.atomic) and read from one in-memory copy, so the bytes checked against the
 index's sha256 are the bytes decoded.
 """
 from dataclasses import fields
 import hashlib
 import json
-import os
 from pathlib import Path
-import tempfile
 
 import netCDF4
 import numpy as np
@@ -25,6 +22,7 @@ import xarray as xr
 from solver.case import PathSet, Relaxation
 from solver.postprocess import Profile, StressMap
 
+from .atomic import atomic_path
 from .fingerprint import LAYOUT, canonical_json
 
 
@@ -62,7 +60,7 @@ _LONG_NAMES = {
     "map_P": "rim force P / (C10 R^2) of the state",
     "map_r": "deformed r / R of every node",
     "map_z": "deformed z / R of every node",
-    "map_von_mises": "von Mises stress / C10 at the nodes (lumped L2 projection)",
+    "map_von_mises": "von Mises stress / C10 at the nodes (mean over the elements holding each)",
     "map_triangles": "node indices of the triangles (8 per Q2 element)",
 }
 _VIEW_SCALARS = ("stage", "a", "delta", "P")
@@ -165,12 +163,10 @@ def _views_data(views) -> dict:
             arr = np.array([getattr(p, side)[i] for p in profiles]).reshape(len(profiles), width)
             data[name] = _var(name, ("profile", f"{side}_node"), arr)
     n = maps[0].nodes.shape[1] if maps else 0
-    data["map_r"] = _var("map_r", ("stress_map", "node"),
-                         np.array([m.nodes[0] for m in maps]).reshape(len(maps), n))
-    data["map_z"] = _var("map_z", ("stress_map", "node"),
-                         np.array([m.nodes[1] for m in maps]).reshape(len(maps), n))
-    data["map_von_mises"] = _var("map_von_mises", ("stress_map", "node"),
-                                 np.array([m.von_mises for m in maps]).reshape(len(maps), n))
+    for name, of in (("map_r", lambda m: m.nodes[0]), ("map_z", lambda m: m.nodes[1]),
+                     ("map_von_mises", lambda m: m.von_mises)):
+        data[name] = _var(name, ("stress_map", "node"),
+                          np.array([of(m) for m in maps]).reshape(len(maps), n))
     tri = maps[0].triangles if maps else np.zeros((0, 3), dtype=np.int64)
     if any(not np.array_equal(m.triangles, tri) for m in maps):
         raise ValueError("the stress maps of a path set must share one triangulation")
@@ -196,39 +192,12 @@ def _views_of(ds: xr.Dataset) -> tuple:
     return tuple(views)
 
 
-def fsync_dir(directory):
-    fd = os.open(directory, os.O_RDONLY)
-    try:
-        os.fsync(fd)
-    finally:
-        os.close(fd)
-
-
 def write_atomic(ds: xr.Dataset, path, encoding=None) -> tuple:
-    """Write `ds` to `path` atomically; returns (sha256 hex, size in bytes).
-
-    A reader sees the old file or the complete new one, never a partial file; after a
-    crash at most a `*.nc.tmp*` file is left behind.
-    """
-    path = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=path.name + ".tmp", dir=path.parent)
-    os.close(fd)
-    try:
+    """Write `ds` to `path` atomically (catalogue.atomic); returns (sha256 hex, size in
+    bytes) of the bytes written."""
+    with atomic_path(path) as tmp:
         ds.to_netcdf(tmp, engine="netcdf4", format="NETCDF4", encoding=encoding)
         data = Path(tmp).read_bytes()
-        fd = os.open(tmp, os.O_RDONLY)
-        try:
-            os.fsync(fd)
-        finally:
-            os.close(fd)
-        mask = os.umask(0)
-        os.umask(mask)
-        os.chmod(tmp, 0o666 & ~mask)        # mkstemp makes it private; results are not
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    fsync_dir(path.parent)
     return hashlib.sha256(data).hexdigest(), len(data)
 
 

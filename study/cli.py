@@ -150,7 +150,8 @@ def _print_case(out):
 
 def _run_tables(ns):
     from .analysis import open_results
-    from .products import write_text_atomic
+    from catalogue.atomic import write_text_atomic
+
     from .tables import cases_table, comparison_table, render
 
     ds = open_results(ns.results)
@@ -188,6 +189,7 @@ def _dpi(text):
 def _run_plot(ns):
     from .analysis import open_results
     from .figures import write_figures
+    from .products import figures_dir
 
     formats = tuple(f.strip() for f in ns.format.split(",") if f.strip())
     bad = [f for f in formats if f not in FIGURE_FORMATS]
@@ -195,8 +197,7 @@ def _run_plot(ns):
         raise InputError(f"--format: {ns.format!r} must be a comma-separated list of "
                          f"{', '.join(FIGURE_FORMATS)}")
     ds = open_results(ns.results)
-    out = Path(ns.out) if ns.out else Path(ns.results).with_suffix("").with_name(
-        Path(ns.results).stem + "_figures")
+    out = Path(ns.out) if ns.out else figures_dir(ns.results)
     t0 = time.perf_counter()
     try:
         written, skipped = write_figures(ds, out, formats, dpi=ns.dpi)

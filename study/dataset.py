@@ -280,7 +280,7 @@ def _deformed_states(served, index, shells, C10s, R) -> dict:
         out[f"map_{c}"] = (M, length_mm(arr, R), _attrs("mm", f"deformed {c} of every node"))
     vm = _padded(shells, {j: [x.von_mises for x in v] for j, v in maps.items()}, width)
     out["map_von_mises"] = (("C10", *M), vm[None] * C10s[:, None, None, None, None], _attrs(
-        "MPa", "von Mises stress at the nodes (lumped L2 projection)"))
+        "MPa", "von Mises stress at the nodes (mean over the elements holding each)"))
     ntri = max([v[0].triangles.shape[0] for v in maps.values() if v], default=0)
     tri = np.full(shells + (ntri, 3), -1, dtype=np.int32)
     for j, v in maps.items():

@@ -15,12 +15,12 @@ import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.tri import Triangulation
 
-from solver.energy import (energy_surface, equilibrium, total_energy_fixed_grips,
+from catalogue.atomic import atomic_path
+from solver.energy import (energy_surface, total_energy_fixed_grips,
                            total_energy_fixed_load)
 from solver.theory import jkr_P_star_N, shell_law_scale_N
 
 from .analysis import along, base_point, eta_fit
-from .products import atomic_path
 
 SWEEPS = (("C10", "C10 [MPa]"), ("t_over_R", "t/R [1]"), ("h_over_R", "h/R [1]"),
           ("gamma", "gamma [J/m$^2$]"))
@@ -139,7 +139,7 @@ def fig_load_relaxation(ds, at=None, n_paths=8) -> Figure:
     ax = fig.subplots()
     ax.plot(ld, lP, color="k", lw=2, label="loading, gamma = 0 (OA)")
     # the shaded example: the path whose a is nearest the equilibrium at P = 0 (a0)
-    eq = ds[["a_eq", "delta_eq", "P_eq"]].sel(p, method=None)
+    eq = ds[["a_eq", "delta_eq", "P_eq"]].sel(p)
     a_eq, d_eq, P_eq = (eq[v].values[~np.isnan(eq["a_eq"].values)] for v in ("a_eq", "delta_eq", "P_eq"))
     a0 = float(ds["a0"].sel(p))
     target = a0 if np.isfinite(a0) else float(np.median(a_eq))
@@ -203,25 +203,28 @@ def fig_energy(ds, at=None, n_curves=7) -> Figure:
     """Fig. 5: total energy U_T(A) at fixed load (above) and at fixed grips (below),
     for loads from P* to -P* and displacements from delta_dagger to -delta_dagger, the
     equilibrium locus G = gamma through their minima, and the pull-off states marked."""
-    _need(ds, "relaxation_U", "relaxation_used", "a_eq")
+    _need(ds, "relaxation_U", "relaxation_used", "P_eq", "delta_eq", "stable_fixed_load",
+          "stable_fixed_grips")
     p = _point(ds, at)
     R, C10 = float(ds["R"]), p["C10"]
     g = p["gamma"] * 1e-3 / (C10 * R)
     s = _surface(ds, p)
-    eq = equilibrium(s, g)
+    eq = ds[["P_eq", "delta_eq", "stable_fixed_load", "stable_fixed_grips"]].sel(p)
     po = {k: float(ds[k].sel(p)) for k in ("P_star", "a_star", "delta_dagger", "a_dagger",
                                            "P_dagger")}
     units = (R ** 2, C10 * R ** 3)         # mm^2 and mJ per dimensionless unit
     fig = Figure(figsize=(7.5, 9), layout="constrained")
     top, bottom = fig.subplots(2, 1)
     P_star = po["P_star"] / (C10 * R ** 2)
-    hi = min(np.max(eq.P[eq.stable_fixed_load]), -P_star)
+    hi = min(np.max(eq["P_eq"].values[eq["stable_fixed_load"].values == 1]) / (C10 * R ** 2),
+             -P_star)
     _family(top, lambda P: total_energy_fixed_load(s, g, P), np.linspace(P_star, hi, n_curves),
             lambda P: f"P = {P * C10 * R ** 2:.2f} N", units,
             (P_star, po["a_star"] / R, f"fixed-load pull-off P* = {po['P_star']:.3f} N"))
     top.set_title(f"(a) fixed load; {_title(ds, p)}", fontsize=9)
     d_dagger = po["delta_dagger"] / R
-    hi = min(np.max(eq.delta[eq.stable_fixed_grips]), -d_dagger)
+    hi = min(np.max(eq["delta_eq"].values[eq["stable_fixed_grips"].values == 1]) / R,
+             -d_dagger)
     _family(bottom, lambda d: total_energy_fixed_grips(s, g, d),
             np.linspace(d_dagger, hi, n_curves), lambda d: f"delta = {d * R:.3f} mm", units,
             (d_dagger, po["a_dagger"] / R, f"fixed-grips pull-off delta = "

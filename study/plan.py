@@ -95,7 +95,7 @@ def restrict(ps: PathSet, delta_max: float) -> PathSet:
     relaxations = tuple(r for r in ps.relaxations if r.delta[0] <= lim)
     held = {r.a for r in relaxations}
     views = tuple(v for v in ps.views
-                  if (v.stage == "loading" and v.delta <= lim) or v.a in held and v.stage != "loading")
+                  if (v.delta <= lim if v.stage == "loading" else v.a in held))
     return replace(ps, delta_max=delta_max, loading_delta=ps.loading_delta[keep],
                    loading_P=ps.loading_P[keep], loading_a=ps.loading_a[keep],
                    loading_U=ps.loading_U[keep], loading_joined=ps.loading_joined[keep],

@@ -6,7 +6,7 @@ Run: python benchmarks/loading.py [coarse default fine]
 import sys
 import time
 
-from solver.case import solve_loading
+from shell_adhesion.solver.case import solve_loading
 
 
 def main(meshes):

@@ -12,8 +12,8 @@ import time
 
 import numpy as np
 
-from solver.case import solve_paths
-from solver.scaling import force_N, gamma_hat
+from shell_adhesion.solver.case import solve_paths
+from shell_adhesion.solver.scaling import force_N, gamma_hat
 
 R_MM, C10 = 20.0, 0.3
 

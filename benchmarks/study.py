@@ -22,8 +22,8 @@ import yaml
 HERE = Path(__file__).resolve().parent
 # this script shares its name with the `study` package: import the package, not itself
 sys.path[:] = [p for p in sys.path if Path(p or ".").resolve() != HERE]
-from study.products import write_products  # noqa: E402
-from study.run import run  # noqa: E402
+from shell_adhesion.study.products import write_products  # noqa: E402
+from shell_adhesion.study.run import run  # noqa: E402
 
 REPO = HERE.parent
 GRID = dict(

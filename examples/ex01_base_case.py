@@ -4,8 +4,8 @@ Loads the shell without adhesion, relaxes every contact radius at fixed contact,
 applies Maugis' energy method: the fixed-load pull-off (P*, delta*, a*) is the minimum of
 P along the equilibrium curve G = gamma, the fixed-grips one the minimum of delta.
 """
-from solver import solve_paths
-from solver.scaling import force_N, gamma_hat, length_mm
+from shell_adhesion.solver import solve_paths
+from shell_adhesion.solver.scaling import force_N, gamma_hat, length_mm
 
 R_MM, C10_MPA, GAMMA_J_M2 = 20.0, 0.3, 30.0
 

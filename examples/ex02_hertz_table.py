@@ -6,7 +6,7 @@ shows how well the mesh locates the contact edge.
 """
 import numpy as np
 
-from solver.case import solve_loading
+from shell_adhesion.solver.case import solve_loading
 
 
 def table(mesh="default", interface="no_slip", delta_max=0.0026):

@@ -7,7 +7,7 @@ from concurrent.futures import ProcessPoolExecutor
 
 import pytest
 
-from solver import solve_paths
+from shell_adhesion.solver import solve_paths
 
 REPO = Path(__file__).resolve().parents[1]
 # environment for subprocesses that must import this checkout
@@ -57,7 +57,7 @@ delta_max_over_R: 0.1
 @pytest.fixture(scope="session")
 def small_study(tmp_path_factory):
     """Path of the small study's results netCDF (computed once per session)."""
-    from study.run import run
+    from shell_adhesion.study.run import run
     d = tmp_path_factory.mktemp("small")
     (d / "small.yaml").write_text(SMALL_STUDY)
     outcome = run(d / "small.yaml", d / "results", catalogue_dir=d / "cat", progress=False)
@@ -67,11 +67,11 @@ def small_study(tmp_path_factory):
 
 # names through which the finite-element solver can be entered (as defined and as imported)
 FE_ENTRY_POINTS = {
-    "solver.path": ("load", "relax", "tangent"),
-    "solver.forms": ("tangent",),
-    "solver.case": ("load", "relax", "solve_paths", "solve_loading", "relaxation_task"),
-    "solver": ("solve_paths", "solve_loading", "relaxation_task"),
-    "study.run": ("solve_loading", "relaxation_task"),
+    "shell_adhesion.solver.path": ("load", "relax", "tangent"),
+    "shell_adhesion.solver.forms": ("tangent",),
+    "shell_adhesion.solver.case": ("load", "relax", "solve_paths", "solve_loading", "relaxation_task"),
+    "shell_adhesion.solver": ("solve_paths", "solve_loading", "relaxation_task"),
+    "shell_adhesion.study.run": ("solve_loading", "relaxation_task"),
 }
 
 

@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from solver.theory import shell_law_scale_N
-from study import analysis
-from study.dataset import DIMS
+from shell_adhesion.solver.theory import shell_law_scale_N
+from shell_adhesion.study import analysis
+from shell_adhesion.study.dataset import DIMS
 
 R = 20.0
 BASE = {"C10_MPa": 0.3, "t_over_R": 0.15, "h_over_R": 1.0, "gamma_J_m2": 30.0}

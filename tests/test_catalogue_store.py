@@ -9,8 +9,8 @@ import sqlite3
 import numpy as np
 import pytest
 
-from catalogue import Catalogue, format_entries, list_entries, pathset_key
-from solver.case import PathSet, Relaxation, solve_paths
+from shell_adhesion.catalogue import Catalogue, format_entries, list_entries, pathset_key
+from shell_adhesion.solver.case import PathSet, Relaxation, solve_paths
 
 SHELL = (0.15, 1.0, "no_slip", "coarse", 0.1, 0.01)
 

@@ -9,7 +9,7 @@ BASE = ["--R", "20", "--t", "3", "--h", "20", "--C10", "0.3"]
 
 
 def run(*args):
-    return subprocess.run([sys.executable, "-m", "study.cli", "case", *args],
+    return subprocess.run([sys.executable, "-m", "shell_adhesion", "case", *args],
                           capture_output=True, text=True, timeout=600)
 
 

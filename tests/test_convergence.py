@@ -6,7 +6,7 @@ paths are loaded to delta = 0.05 R (a up to about 4.4 mm, beyond a* = 2 mm); P(5
 the loading curve alone."""
 import pytest
 
-from solver.case import solve_loading
+from shell_adhesion.solver.case import solve_loading
 
 from conftest import GAMMA_HAT, base_case
 from test_paper import loading_P

@@ -7,7 +7,7 @@ at a contact event the one-sided slopes), whose error is O(step^5).
 """
 import numpy as np
 
-from solver.case import relaxation_starts
+from shell_adhesion.solver.case import relaxation_starts
 
 
 def hermite_integral(x0, x1, f0, f1, df0, df1):

@@ -2,7 +2,7 @@
 import importlib.util
 import pathlib
 
-from solver.scaling import force_N
+from shell_adhesion.solver.scaling import force_N
 
 EXAMPLES = pathlib.Path(__file__).parent.parent / "examples"
 

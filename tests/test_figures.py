@@ -5,9 +5,9 @@ import pytest
 import xarray as xr
 from matplotlib.collections import PolyCollection, TriMesh
 
-from solver.energy import equilibrium, pull_off
-from study import figures
-from study.analysis import along, base_point
+from shell_adhesion.solver.energy import equilibrium, pull_off
+from shell_adhesion.study import figures
+from shell_adhesion.study.analysis import along, base_point
 
 
 @pytest.fixture(scope="module")
@@ -157,7 +157,7 @@ def test_run_writes_tables_and_figures_beside_the_cube(small_study):
 
 
 def test_plot_command(small_study, tmp_path, forbid_fe, capsys):
-    from study.cli import main
+    from shell_adhesion.study.cli import main
     assert main(["plot", str(small_study), "--out", str(tmp_path / "f"), "--format", "png"]) == 0
     assert len(list((tmp_path / "f").glob("*.png"))) == len(figures.FIGURES)
     assert "6 files in" in capsys.readouterr().out
@@ -172,7 +172,7 @@ def test_plot_command(small_study, tmp_path, forbid_fe, capsys):
 def test_a_base_without_some_factors_uses_the_middle_of_their_axis(ds, tmp_path):
     """A grid-only factor has no base value: figures and tables still come out."""
     import json
-    from study.products import write_tables
+    from shell_adhesion.study.products import write_tables
     study = json.loads(ds.attrs["study"])
     del study["base"]["C10_MPa"], study["base"]["gamma_J_m2"]
     grid = ds.assign_attrs(study=json.dumps(study))

@@ -10,8 +10,8 @@ the default mesh and 1.016 on the fine one at a/R = 0.03), while P converges fas
 import numpy as np
 import pytest
 
-from solver import theory
-from solver.case import solve_loading
+from shell_adhesion.solver import theory
+from shell_adhesion.solver.case import solve_loading
 
 R_MM, C10 = 20.0, 0.3
 

@@ -11,10 +11,10 @@ import numpy as np
 import pytest
 from skfem import MeshQuad1, MeshQuad2
 
-from solver.contact import Constraints
-from solver.forms import discretise, deformation
-from solver.material import cauchy_stress
-from solver.path import Settings, Timer, _Problem
+from shell_adhesion.solver.contact import Constraints
+from shell_adhesion.solver.forms import discretise, deformation
+from shell_adhesion.solver.material import cauchy_stress
+from shell_adhesion.solver.path import Settings, Timer, _Problem
 
 C10 = 0.7
 

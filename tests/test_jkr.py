@@ -2,8 +2,8 @@
 gamma = 1 J/m^2 (gamma / (C10 R) = 1.7e-4, so a*/R = 0.04: small strain)."""
 import pytest
 
-from solver import solve_paths, theory
-from solver.scaling import force_N, gamma_hat, length_mm
+from shell_adhesion.solver import solve_paths, theory
+from shell_adhesion.solver.scaling import force_N, gamma_hat, length_mm
 
 from conftest import _pool
 

@@ -4,9 +4,9 @@ import math
 import numpy as np
 import pytest
 
-from solver.geometry import Cap, InputError, check_cap
-from solver.mesh import cap_mesh, mesh_spec
-from solver.forms import discretise
+from shell_adhesion.solver.geometry import Cap, InputError, check_cap
+from shell_adhesion.solver.mesh import cap_mesh, mesh_spec
+from shell_adhesion.solver.forms import discretise
 
 
 @pytest.mark.parametrize("t,h", [(0.15, 1.0), (0.15, 0.5), (0.5, 1.0), (1.0, 1.0), (1.0, 0.6)])

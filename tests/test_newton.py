@@ -1,11 +1,11 @@
 """Newton with the consistent tangent converges quadratically."""
 import numpy as np
 
-from solver.contact import constraints
-from solver.forms import discretise, residual, tangent
-from solver.geometry import Cap
-from solver.mesh import cap_mesh, mesh_spec
-from solver.path import Settings, Timer, _Problem
+from shell_adhesion.solver.contact import constraints
+from shell_adhesion.solver.forms import discretise, residual, tangent
+from shell_adhesion.solver.geometry import Cap
+from shell_adhesion.solver.mesh import cap_mesh, mesh_spec
+from shell_adhesion.solver.path import Settings, Timer, _Problem
 
 
 def test_tangent_matches_finite_differences():

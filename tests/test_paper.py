@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 from scipy.interpolate import CubicHermiteSpline, CubicSpline
 
-from solver.case import relaxation_starts, solve_loading
-from solver.path import relax
+from shell_adhesion.solver.case import relaxation_starts, solve_loading
+from shell_adhesion.solver.path import relax
 
 from conftest import C10_MPA, GAMMA_HAT, R_MM, base_case
 

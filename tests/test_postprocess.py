@@ -2,8 +2,8 @@
 import numpy as np
 import pytest
 
-from solver.energy import total_energy_fixed_grips, total_energy_fixed_load
-from solver.postprocess import profiles, von_mises_field
+from shell_adhesion.solver.energy import total_energy_fixed_grips, total_energy_fixed_load
+from shell_adhesion.solver.postprocess import profiles, von_mises_field
 
 
 def test_profiles_and_von_mises(base_coarse):
@@ -41,7 +41,7 @@ def test_total_energy_minimum_is_the_equilibrium(base_coarse):
 def test_nodal_von_mises_is_exact_for_a_homogeneous_stretch(base_coarse):
     """Uniaxial stretch lam along z of the whole cap (incompressible, any pressure):
     sigma_vm = 2 C10 (lam^2 - 1/lam) at every node, the axis included."""
-    from solver.postprocess import nodal_von_mises, triangles
+    from shell_adhesion.solver.postprocess import nodal_von_mises, triangles
     _, d, _ = base_coarse
     lam = 1.3
     r, z = d.capmesh.nodes

@@ -4,11 +4,11 @@ located exactly: P scales by C10 L^2, delta and a by L, U by C10 L^3."""
 import numpy as np
 import pytest
 
-from solver.forms import discretise
-from solver.geometry import Cap
-from solver.mesh import cap_mesh, mesh_spec, scaled
-from solver.path import load
-from solver.scaling import force_N, gamma_hat
+from shell_adhesion.solver.forms import discretise
+from shell_adhesion.solver.geometry import Cap
+from shell_adhesion.solver.mesh import cap_mesh, mesh_spec, scaled
+from shell_adhesion.solver.path import load
+from shell_adhesion.solver.scaling import force_N, gamma_hat
 
 
 def _events(L, C10, interface="no_slip"):

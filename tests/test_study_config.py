@@ -3,9 +3,9 @@ from pathlib import Path
 
 import pytest
 
-from study.config import StudyError, load_study
-from study.plan import make_plan
-from study.run import run_study
+from shell_adhesion.study.config import StudyError, load_study
+from shell_adhesion.study.plan import make_plan
+from shell_adhesion.study.run import run_study
 
 REPO = Path(__file__).resolve().parents[1]
 
@@ -119,5 +119,5 @@ def test_workflow_is_the_papers_study():
 
 def test_error_is_a_value_error():
     with pytest.raises(StudyError, match=r"^R_mm: -1 must be > 0$"):
-        from study.config import validate
+        from shell_adhesion.study.config import validate
         validate(dict(name="x", R_mm=-1))

@@ -1,9 +1,9 @@
 """The plan: a study reduces to its distinct FE path sets (DESIGN.md section 3)."""
 import pytest
 
-from catalogue import canonical_json, family, fingerprint, pathset_key
-from study.config import validate
-from study.plan import gamma_max_bucket, make_plan
+from shell_adhesion.catalogue import canonical_json, family, fingerprint, pathset_key
+from shell_adhesion.study.config import validate
+from shell_adhesion.study.plan import gamma_max_bucket, make_plan
 
 BASE = dict(C10_MPa=0.3, t_over_R=0.15, h_over_R=1.0, gamma_J_m2=30)
 

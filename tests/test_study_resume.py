@@ -9,8 +9,8 @@ import time
 
 import xarray as xr
 
-from catalogue import Catalogue, list_entries
-from study.run import run, summary
+from shell_adhesion.catalogue import Catalogue, list_entries
+from shell_adhesion.study.run import run, summary
 
 from conftest import ENV, REPO
 
@@ -57,7 +57,7 @@ def test_killed_run_resumes(tmp_path):
     cat, out = tmp_path / "cat", tmp_path / "results"
     log = open(tmp_path / "run.log", "w")
     proc = subprocess.Popen(
-        [sys.executable, "-m", "study.run", str(study), "--out", str(out), "--catalogue", str(cat),
+        [sys.executable, "-m", "shell_adhesion.study.run", str(study), "--out", str(out), "--catalogue", str(cat),
          "--workers", "1"],
         cwd=REPO, env=ENV, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
     try:

@@ -12,11 +12,11 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from catalogue import Catalogue, list_entries
-from solver.path import Settings
-from study import dataset
-from study.plan import restrict
-from study.run import run, run_study, summary
+from shell_adhesion.catalogue import Catalogue, list_entries
+from shell_adhesion.solver.path import Settings
+from shell_adhesion.study import dataset
+from shell_adhesion.study.plan import restrict
+from shell_adhesion.study.run import run, run_study, summary
 
 from conftest import ENV
 

@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from study import analysis, tables
-from study.cli import main
+from shell_adhesion.study import analysis, tables
+from shell_adhesion.study.cli import main
 
 CASE_VARS = ("C10", "gamma", "P_star", "delta_star", "a_star", "P_dagger", "delta_dagger",
              "a_dagger", "a0", "eta")
@@ -87,7 +87,7 @@ def test_missing_values_and_formats():
 
 
 def test_cli_reads_without_solving(small_study, forbid_fe, capsys, tmp_path):
-    import solver
+    from shell_adhesion import solver
     with pytest.raises(AssertionError, match="must not run the FE solver"):
         solver.solve_paths(0.15, 1.0)                   # the fixture is armed
     assert main(["tables", str(small_study), "--format", "csv"]) == 0

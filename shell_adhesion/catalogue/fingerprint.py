@@ -60,7 +60,7 @@ def family(key) -> str:
 @lru_cache(maxsize=1)
 def solver_source_sha256() -> str:
     """sha256 over the solver package's Python sources (names and contents)."""
-    import solver
+    from shell_adhesion import solver
     h = hashlib.sha256()
     for p in sorted(Path(solver.__file__).parent.glob("*.py")):
         h.update(p.name.encode() + b"\0" + p.read_bytes() + b"\0")
@@ -70,9 +70,9 @@ def solver_source_sha256() -> str:
 def pathset_key(t_over_R, h_over_R, interface, mesh, delta_max_over_R, gamma_max_hat,
                 settings=None) -> dict:
     """Key of the FE path set of one dimensionless shell (validated names and values)."""
-    import solver
-    from solver import case
-    from solver.mesh import mesh_spec
+    from shell_adhesion import solver
+    from shell_adhesion.solver import case
+    from shell_adhesion.solver.mesh import mesh_spec
     settings = settings if settings is not None else solver.Settings()
     return {
         "kind": "shell-adhesion path set",

@@ -13,7 +13,7 @@ import time
 
 import xarray as xr
 
-from catalogue.atomic import write_text_atomic
+from shell_adhesion.catalogue.atomic import write_text_atomic
 
 
 def tables_dir(results_nc) -> Path:

@@ -19,8 +19,8 @@ import netCDF4
 import numpy as np
 import xarray as xr
 
-from solver.case import PathSet, Relaxation
-from solver.postprocess import Profile, StressMap
+from shell_adhesion.solver.case import PathSet, Relaxation
+from shell_adhesion.solver.postprocess import Profile, StressMap
 
 from .atomic import atomic_path
 from .fingerprint import LAYOUT, canonical_json

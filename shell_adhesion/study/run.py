@@ -9,7 +9,7 @@ results.  A shell whose paths fail is recorded with its reason and the rest cont
 Exit codes: 0 all requested points evaluated, 1 something failed (the dataset's `status`
 says what), 2 the study file is invalid (nothing created).
 
-    python -m study.run workflow.yaml --out results [--scheduler ADDRESS] [--catalogue DIR]
+    python -m shell_adhesion.study.run workflow.yaml --out results [--scheduler ADDRESS] [--catalogue DIR]
 """
 import argparse
 from contextlib import contextmanager
@@ -23,12 +23,12 @@ import uuid
 
 from tqdm import tqdm
 
-import solver
-from catalogue import Catalogue
-from catalogue.fingerprint import solver_source_sha256
-from solver.case import (loading_views, pathset_of, relaxation_starts, relaxation_task,
+from shell_adhesion import solver
+from shell_adhesion.catalogue import Catalogue
+from shell_adhesion.catalogue.fingerprint import solver_source_sha256
+from shell_adhesion.solver.case import (loading_views, pathset_of, relaxation_starts, relaxation_task,
                          solve_loading)
-from solver.path import LoadingPath, Settings
+from shell_adhesion.solver.path import LoadingPath, Settings
 
 from . import dataset
 from .config import StudyError, load_study
@@ -376,13 +376,13 @@ def add_arguments(parser: argparse.ArgumentParser):
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m study.run", description=__doc__.split("\n")[0])
+    parser = argparse.ArgumentParser(prog="python -m shell_adhesion.study.run", description=__doc__.split("\n")[0])
     add_arguments(parser)
     a = parser.parse_args(argv)
     return run_study(a.study, a.out, a.scheduler, a.catalogue, not a.no_progress, a.workers)
 
 
 if __name__ == "__main__":
-    # run the importable module, so that the tasks pickle as study.run.*, not __main__.*
-    from study.run import main as _main
+    # run the importable module, so that the tasks pickle as shell_adhesion.study.run.*, not __main__.*
+    from shell_adhesion.study.run import main as _main
     sys.exit(_main())

@@ -28,12 +28,12 @@ from datetime import datetime, timezone
 import numpy as np
 import xarray as xr
 
-import solver
-from catalogue import write_atomic
-from catalogue.fingerprint import canonical_json, solver_source_sha256
-from solver import case
-from solver.scaling import energy_mJ, force_N, gamma_hat, length_mm
-from solver.theory import eta_of
+from shell_adhesion import solver
+from shell_adhesion.catalogue import write_atomic
+from shell_adhesion.catalogue.fingerprint import canonical_json, solver_source_sha256
+from shell_adhesion.solver import case
+from shell_adhesion.solver.scaling import energy_mJ, force_N, gamma_hat, length_mm
+from shell_adhesion.solver.theory import eta_of
 
 from .plan import LADDER, Plan
 
@@ -241,7 +241,7 @@ def _relaxation_curves(served, index, shells, C10s, R) -> dict:
 
 def _deformed_states(served, index, shells, C10s, R) -> dict:
     """Deformed profiles and von Mises maps kept by each shell's FE paths."""
-    from solver.postprocess import Profile, StressMap
+    from shell_adhesion.solver.postprocess import Profile, StressMap
     prof, maps = {}, {}
     for (t, h), (_, ps) in served.items():
         j = (index["t_over_R"][t], index["h_over_R"][h])

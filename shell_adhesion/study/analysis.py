@@ -16,8 +16,8 @@ import xarray as xr
 from scipy import stats
 from scipy.interpolate import CubicSpline
 
-from solver.geometry import InputError
-from solver.theory import jkr_P_star_N, shell_law_scale_N
+from shell_adhesion.solver.geometry import InputError
+from shell_adhesion.solver.theory import jkr_P_star_N, shell_law_scale_N
 
 from .dataset import DIMS
 

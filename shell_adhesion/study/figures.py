@@ -15,10 +15,10 @@ import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.tri import Triangulation
 
-from catalogue.atomic import atomic_path
-from solver.energy import (energy_surface, total_energy_fixed_grips,
+from shell_adhesion.catalogue.atomic import atomic_path
+from shell_adhesion.solver.energy import (energy_surface, total_energy_fixed_grips,
                            total_energy_fixed_load)
-from solver.theory import jkr_P_star_N, shell_law_scale_N
+from shell_adhesion.solver.theory import jkr_P_star_N, shell_law_scale_N
 
 from .analysis import along, base_point, eta_fit
 

@@ -18,9 +18,9 @@ from pathlib import Path
 import sys
 import time
 
-from solver import GAMMA_MAX, INTERFACES, ConvergenceError, InputError, __version__
-from solver.path import Settings
-from solver.scaling import gamma_hat
+from shell_adhesion.solver import GAMMA_MAX, INTERFACES, ConvergenceError, InputError, __version__
+from shell_adhesion.solver.path import Settings
+from shell_adhesion.solver.scaling import gamma_hat
 
 MESHES = ("coarse", "default", "fine")
 FIGURE_FORMATS = ("png", "pdf", "svg")
@@ -73,7 +73,7 @@ def _case_input(ns):
 
 
 def _run_case(ns):
-    from solver.case import solve_paths
+    from shell_adhesion.solver.case import solve_paths
     from tqdm import tqdm
 
     from .case_report import adhesion_dicts, loading_dict, relaxation_list
@@ -150,7 +150,7 @@ def _print_case(out):
 
 def _run_tables(ns):
     from .analysis import open_results
-    from catalogue.atomic import write_text_atomic
+    from shell_adhesion.catalogue.atomic import write_text_atomic
 
     from .tables import cases_table, comparison_table, render
 
@@ -280,7 +280,7 @@ def main(argv=None):
         if ns.command in ("analyse", "summary"):
             return _run_analyse(ns)
         if ns.command == "catalogue":
-            from catalogue import format_entries, list_entries
+            from shell_adhesion.catalogue import format_entries, list_entries
             print(format_entries(list_entries(ns.catalogue)))
             return 0
     except InputError as err:

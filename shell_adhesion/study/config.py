@@ -36,10 +36,10 @@ import re
 
 import yaml
 
-from solver.case import GAMMA_MAX
-from solver.contact import INTERFACES
-from solver.geometry import InputError, check_cap
-from solver.scaling import gamma_hat
+from shell_adhesion.solver.case import GAMMA_MAX
+from shell_adhesion.solver.contact import INTERFACES
+from shell_adhesion.solver.geometry import InputError, check_cap
+from shell_adhesion.solver.scaling import gamma_hat
 
 FACTORS = ("C10_MPa", "t_over_R", "h_over_R", "gamma_J_m2")
 MESHES = ("coarse", "default", "fine")

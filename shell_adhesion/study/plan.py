@@ -11,10 +11,10 @@ the requested delta_max, so the results do not depend on what else the catalogue
 from dataclasses import dataclass, replace
 import math
 
-from catalogue import fingerprint, pathset_key
-from solver.case import PathSet
-from solver.path import Settings
-from solver.scaling import gamma_hat
+from shell_adhesion.catalogue import fingerprint, pathset_key
+from shell_adhesion.solver.case import PathSet
+from shell_adhesion.solver.path import Settings
+from shell_adhesion.solver.scaling import gamma_hat
 
 from .config import FACTORS, Study, requested
 

@@ -4,9 +4,9 @@ Takes a dimensionless PathSet and returns plain dicts in mm, N, mJ, MPa, J/m^2.
 """
 import numpy as np
 
-from solver import theory
-from solver.case import PathSet
-from solver.scaling import energy_mJ, force_N, gamma_hat, length_mm
+from shell_adhesion.solver import theory
+from shell_adhesion.solver.case import PathSet
+from shell_adhesion.solver.scaling import energy_mJ, force_N, gamma_hat, length_mm
 
 
 def _num(v, digits=10):

@@ -22,7 +22,7 @@ import socket
 import sqlite3
 import time
 
-from solver.case import PathSet
+from shell_adhesion.solver.case import PathSet
 
 from . import pathfile
 from .fingerprint import canonical_json, family, fingerprint

@@ -1,0 +1,7 @@
+"""``python -m shell_adhesion``: the same as the ``shell-adhesion`` command."""
+import sys
+
+from shell_adhesion.study.cli import main
+
+if __name__ == "__main__":
+    sys.exit(main())

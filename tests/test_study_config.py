@@ -3,7 +3,8 @@ from pathlib import Path
 
 import pytest
 
-from shell_adhesion.study.config import StudyError, load_study
+from shell_adhesion.solver.geometry import InputError, check_cap
+from shell_adhesion.study.config import MAX_BYTES, StudyError, load_study
 from shell_adhesion.study.plan import make_plan
 from shell_adhesion.study.run import run_study
 
@@ -22,16 +23,29 @@ delta_max_over_R: 0.1
 
 PWNED = "/tmp/shell-adhesion-yaml-tag-was-executed"
 
+
+def cap_message(t, h, t_place, h_place):
+    """The solver's cap rule for (t, h), named with the study file's places."""
+    with pytest.raises(InputError) as e:
+        check_cap(t, h, t_place, h_place)
+    return str(e.value)
+
+
 # (name, file text, text the one-line message must contain)
 BAD = [
     ("unknown key", GOOD + "mesh_size: 3\n", "mesh_size: unknown key"),
     ("unknown factor", GOOD + "grid:\n  E_MPa: [1.0]\n", "grid.E_MPa: unknown factor"),
     ("wrong type", GOOD.replace("R_mm: 20", "R_mm: twenty"), "R_mm: 'twenty' must be a number"),
     ("bool as number", GOOD.replace("R_mm: 20", "R_mm: true"), "R_mm: True must be a number"),
-    ("exponent read as text", GOOD.replace("R_mm: 20", "R_mm: 2e1"),
-     "R_mm: '2e1' must be a number (YAML reads this as text"),
+    ("R beyond its range", GOOD.replace("R_mm: 20", "R_mm: 1e200"),
+     "R_mm: 1e+200 must be from 0.001 to 10000 mm"),
+    ("nan", GOOD.replace("R_mm: 20", "R_mm: .nan"), "R_mm: nan must be a finite number"),
+    ("unknown key near a valid one", GOOD + "interfce: no_slip\n",
+     "interfce: unknown key; did you mean interface?"),
+    ("YAML 1.1 boolean is text", GOOD + "outputs:\n  loading_curves: yes\n",
+     "outputs.loading_curves: 'yes' must be true or false"),
     ("t > R", GOOD.replace("t_over_R: [0.15, 0.2]", "t_over_R: [0.15, 0.2, 0.3, 1.2]"),
-     "sweeps.t_over_R[3]: 1.2 must be <= 1 (t <= R)"),
+     cap_message(1.2, 1.0, "sweeps.t_over_R[3]", "base.h_over_R")),
     ("h <= t", GOOD + "grid:\n  h_over_R: [0.5, 0.1]\n",
      "grid.h_over_R[1]: 0.1 must be > t"),
     ("C10 <= 0", GOOD.replace("C10_MPa: [0.2, 0.3]", "C10_MPa: [0.2, -0.3]"),
@@ -103,6 +117,23 @@ def test_good_study_values(tmp_path):
     assert s.interface == "no_slip" and s.outputs.loading_curves
     assert s.sweeps == {"C10_MPa": (0.2, 0.3), "t_over_R": (0.15, 0.2)}
     assert len(s.sha256) == 64
+
+
+def test_yaml_12_numbers(tmp_path):
+    """Plain scalars resolve as YAML 1.2: 2e1 and 3E-1 are numbers, 017 is 17."""
+    path = tmp_path / "s.yaml"
+    path.write_text(GOOD.replace("R_mm: 20", "R_mm: 2e1").replace("C10_MPa: [0.2, 0.3]",
+                                                                 "C10_MPa: [2e-1, 3E-1]")
+                    .replace("gamma_J_m2: 30}", "gamma_J_m2: 030}"))
+    s = load_study(path)
+    assert s.R_mm == 20.0 and s.sweeps["C10_MPa"] == (0.2, 0.3) and s.base["gamma_J_m2"] == 30
+
+
+def test_study_file_over_1_MB(tmp_path):
+    path = tmp_path / "big.yaml"
+    path.write_text(GOOD + "#" * MAX_BYTES + "\n")
+    with pytest.raises(StudyError, match=r"^the study file is over 1 MB"):
+        load_study(path)
 
 
 def test_workflow_is_the_papers_study():

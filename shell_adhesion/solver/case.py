@@ -12,7 +12,7 @@ import numpy as np
 
 from .energy import EnergySurface, energy_surface, equilibrium, pull_off
 from .forms import Discretisation, discretise
-from .geometry import Cap
+from .geometry import Cap, InputError
 from .mesh import CapMesh, cap_mesh, mesh_spec
 from .path import LoadingPath, RelaxationPath, Settings, State, load, relax
 from .postprocess import StressMap, profile, spread, stress_map
@@ -20,6 +20,23 @@ from .postprocess import StressMap, profile, spread, stress_map
 GAMMA_MAX = 0.03        # default largest gamma / (C10 R) the relaxation paths must serve
 STEPS_PER_PATH = 8      # relaxation steps down to the stop criterion (about)
 G_SAFETY = 3.0          # relax until the flat-punch estimate of G exceeds G_SAFETY * gamma_max
+
+
+def check_gamma(gamma_hat: float, gamma_max: float = GAMMA_MAX, name: str = "gamma/(C10 R)",
+                given: str = "", scales: str = ""):
+    """Raise InputError unless 0 < gamma / (C10 R) <= gamma_max (what the paths serve).
+
+    `name` is the caller's field, `given` the value as the user wrote it (e.g. "900 J/m^2")
+    and `scales` what made it dimensionless (e.g. "with C10 = 0.3 MPa and R = 20 mm").
+    """
+    if not gamma_hat > 0:
+        raise InputError(f"{name}: {given or format(gamma_hat, 'g')} must be > 0")
+    if gamma_hat > gamma_max * (1 + 1e-12):
+        shown = f"{gamma_hat:.4g}"
+        if given:
+            shown = " ".join(w for w in (given, scales) if w) + f" gives gamma/(C10 R) = {shown}"
+        raise InputError(f"{name}: {shown}, which must be <= {gamma_max:g} (the range of the "
+                         "relaxation paths)")
 
 
 def flat_punch_G(start: State, s: State) -> float:
@@ -83,6 +100,11 @@ class Relaxation:
     newton_iterations: int
     views: tuple = ()       # Profile and StressMap of the path, when asked for (figures)
 
+    @property
+    def usable(self) -> bool:
+        """Used by the energy method: the centre stays down and no free node touches."""
+        return not (self.centre_lifts or self.penetration)
+
     @classmethod
     def of(cls, path: RelaxationPath, d: Discretisation = None):
         """The path's arrays; with `d`, also its views (see `relaxation_views`)."""
@@ -129,14 +151,12 @@ class PathSet:
     views: tuple = ()               # Profile and StressMap states kept for figures
 
     def surface(self) -> EnergySurface:
-        usable = [r for r in self.relaxations if not r.centre_lifts and not r.penetration]
+        usable = [r for r in self.relaxations if r.usable]
         return energy_surface([(r.a, r.delta, r.P, r.U) for r in sorted(usable, key=lambda r: r.a)])
 
     def pull_off(self, gamma: float, surface: EnergySurface = None):
         """Equilibrium curve and pull-off for gamma / (C10 R)."""
-        if not 0 < gamma <= self.gamma_max:
-            raise ValueError(f"gamma/(C10 R) = {gamma:g} is outside the range these paths "
-                             f"serve (0, {self.gamma_max:g}]")
+        check_gamma(gamma, self.gamma_max)
         eq = equilibrium(surface or self.surface(), gamma)
         return eq, pull_off(eq)
 

@@ -96,13 +96,6 @@ def strain_energy(d: Discretisation, x) -> float:
     return float(np.sum(energy(f) * d.w))
 
 
-def volume_change(d: Discretisation, x) -> float:
-    """Integral of (J - 1) dV / R^3: zero for an exactly incompressible solution."""
-    f, _ = _fields(d, x)
-    J = (f[0] * f[3] - f[1] * f[2]) * f[4]
-    return float(np.sum((J - 1.0) * d.w))
-
-
 def residual(d: Discretisation, x):
     """Internal force vector dL/dx (units of C10 R^2; pressure rows: volume / R^3)."""
     f, p = _fields(d, x)

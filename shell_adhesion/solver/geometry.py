@@ -7,6 +7,8 @@ the substrate z = 0 at the origin.  t = 1 is a solid cap (no cavity).
 from dataclasses import dataclass
 import math
 
+DELTA_MAX_LIMIT = 0.5   # deepest loading delta_max / R the tool accepts
+
 
 class InputError(ValueError):
     """Bad input: the message names the field, the value and the rule."""
@@ -67,3 +69,13 @@ def check_cap(t_over_R, h_over_R, t_name="t/R", h_name="h/R"):
     if t_over_R < 1.0 and h_over_R <= t_over_R:
         raise InputError(
             f"{h_name}: {h_over_R:g} must be > t ({t_over_R:g}) unless t = R (solid cap)")
+
+
+def check_delta_max(delta_max_over_R, h_over_R, name="delta_max/R", h_name="h/R"):
+    """Raise InputError unless 0 < delta_max <= DELTA_MAX_LIMIT and delta_max < h (the rim
+    stays above the plane), all in units of R."""
+    if not 0.0 < delta_max_over_R <= DELTA_MAX_LIMIT:
+        rule = "must be > 0" if not delta_max_over_R > 0 else f"must be <= {DELTA_MAX_LIMIT:g}"
+        raise InputError(f"{name}: {delta_max_over_R:g} {rule}")
+    if not delta_max_over_R < h_over_R:
+        raise InputError(f"{name}: {delta_max_over_R:g} must be < h/R ({h_over_R:g}, {h_name})")

@@ -7,7 +7,6 @@ contact forms, toward the rim; through the thickness they grow from the outer su
 Nodes (Q2, 9 per element) lie exactly on the spheres.
 """
 from dataclasses import dataclass, replace
-import math
 
 import numpy as np
 from skfem import MeshQuad1, MeshQuad2, ElementQuad2
@@ -185,13 +184,6 @@ def _with_boundaries(cap, spec, mesh):
     axis = np.flatnonzero(r < tol)
     corner = outer < mesh.nvertices
     return CapMesh(cap, spec, mesh, outer, corner, inner, rim, axis)
-
-
-def refined(spec: MeshSpec) -> MeshSpec:
-    """The next finer mesh of the same family (sizes halved)."""
-    return replace(spec, name=spec.name + "+", h_apex=spec.h_apex / 2, growth=math.sqrt(spec.growth),
-                   h_max=spec.h_max / 2, layer0=spec.layer0 / 2,
-                   layer_growth=math.sqrt(spec.layer_growth), layer_max=spec.layer_max / 2)
 
 
 def scaled(cm: CapMesh, length: float) -> CapMesh:

@@ -21,36 +21,41 @@
       relaxation_curves: true   # P, delta of every relaxation path (default true)
       deformed_states: true     # profiles and von Mises maps for figures (default true)
 
-Besides each value's own rule, every requested shell must be a valid cap deeper than
-delta_max, and every requested gamma / (C10 R) at most solver.case.GAMMA_MAX.  The file is
-read by a SafeLoader (tags such as !!python/object are errors, never run) that also rejects
-duplicate keys.  Every problem is one StudyError whose message names its place, e.g.
-``sweeps.t_over_R[3]: 1.2 must be <= 1 (t <= R)``.
+The rules are the solver's, each in one place: R_mm and C10_MPa `solver.scaling.check_R`
+/ `check_C10`, every requested shell `solver.geometry.check_cap` and `check_delta_max`,
+every requested gamma / (C10 R) `solver.case.check_gamma`; this module adds the file's
+own rules (keys, types, repeats) and names each place as it stands in the file, e.g.
+``sweeps.t_over_R[3]: 1.2 must satisfy 0 < t <= R``.
+
+The file (at most 1 MB) is read by a SafeLoader (tags such as !!python/object are errors,
+never run) that rejects duplicate keys and resolves plain scalars as YAML 1.2 does: ``1e2``
+is the number 100.0, ``yes`` and ``on`` are text, ``017`` is 17.  Every problem is one
+StudyError (an InputError) whose message is one line naming its place.
 """
 from dataclasses import asdict, dataclass, field
+import difflib
 import hashlib
 import itertools
-import math
 from pathlib import Path
 import re
 
 import yaml
 
-from shell_adhesion.solver.case import GAMMA_MAX
+from shell_adhesion.solver.case import GAMMA_MAX, check_gamma
 from shell_adhesion.solver.contact import INTERFACES
-from shell_adhesion.solver.geometry import InputError, check_cap
-from shell_adhesion.solver.scaling import gamma_hat
+from shell_adhesion.solver.geometry import InputError, check_cap, check_delta_max
+from shell_adhesion.solver.scaling import check_C10, check_finite, check_R, gamma_hat
 
 FACTORS = ("C10_MPa", "t_over_R", "h_over_R", "gamma_J_m2")
 MESHES = ("coarse", "default", "fine")
 KEYS = ("name", "description", "R_mm", "base", "sweeps", "grid", "interface", "mesh",
         "delta_max_over_R", "outputs")
 OUTPUTS = ("equilibrium_curves", "loading_curves", "relaxation_curves", "deformed_states")
-DELTA_MAX_LIMIT = 0.5
+MAX_BYTES = 1_000_000       # a study file is a few lines; refuse anything over 1 MB
 _STEM = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]{0,99}")
 
 
-class StudyError(ValueError):
+class StudyError(InputError):
     """A study file that cannot run; the message is one line naming the place."""
 
 
@@ -91,7 +96,7 @@ class Study:
 # -- reading ---------------------------------------------------------------------------
 
 class _Loader(yaml.SafeLoader):
-    """SafeLoader that refuses duplicate keys."""
+    """SafeLoader that refuses duplicate keys and resolves scalars as YAML 1.2 (core schema)."""
 
 
 def _mapping(loader, node, deep=False):
@@ -110,7 +115,30 @@ def _mapping(loader, node, deep=False):
     return loader.construct_mapping(node, deep=deep)
 
 
+def _int(loader, node):
+    """YAML 1.2 integers: decimal (017 is 17), 0o octal, 0x hexadecimal."""
+    text = loader.construct_scalar(node)
+    try:
+        if text[:2] in ("0o", "0x"):
+            return int(text[2:], 8 if text[1] == "o" else 16)
+        return int(text, 10)
+    except ValueError:
+        raise yaml.constructor.ConstructorError(
+            None, None, f"{text!r} is not an integer", node.start_mark) from None
+
+
+_YAML11 = {f"tag:yaml.org,2002:{t}" for t in ("bool", "int", "float")}
+_Loader.yaml_implicit_resolvers = {
+    first: [(tag, rx) for tag, rx in resolvers if tag not in _YAML11]
+    for first, resolvers in yaml.SafeLoader.yaml_implicit_resolvers.items()}
+for _tag, _rx, _first in (
+        ("bool", r"^(?:true|True|TRUE|false|False|FALSE)$", "tTfF"),
+        ("int", r"^(?:[-+]?[0-9]+|0o[0-7]+|0x[0-9a-fA-F]+)$", "-+0123456789"),
+        ("float", r"^(?:[-+]?(?:\.[0-9]+|[0-9]+(?:\.[0-9]*)?)(?:[eE][-+]?[0-9]+)?"
+                  r"|[-+]?\.(?:inf|Inf|INF)|\.(?:nan|NaN|NAN))$", "-+.0123456789")):
+    _Loader.add_implicit_resolver(f"tag:yaml.org,2002:{_tag}", re.compile(_rx), list(_first))
 _Loader.add_constructor(yaml.resolver.BaseResolver.DEFAULT_MAPPING_TAG, _mapping)
+_Loader.add_constructor("tag:yaml.org,2002:int", _int)
 
 
 def _yaml_message(e: yaml.YAMLError) -> str:
@@ -124,9 +152,13 @@ def load_study(path) -> Study:
     """Read and validate a study file; raises StudyError."""
     path = Path(path)
     try:
-        data = path.read_bytes()
+        with path.open("rb") as f:
+            data = f.read(MAX_BYTES + 1)
     except OSError as e:
         raise StudyError(f"cannot read the study file ({e.strerror or e})") from None
+    if len(data) > MAX_BYTES:
+        raise StudyError(f"the study file is over {MAX_BYTES // 1_000_000} MB ({MAX_BYTES} "
+                         "bytes at most): a study is a few lines of YAML")
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError:
@@ -135,20 +167,15 @@ def load_study(path) -> Study:
         doc = yaml.load(text, Loader=_Loader)
     except yaml.YAMLError as e:
         raise StudyError(_yaml_message(e)) from None
+    except ValueError as e:     # an explicit tag on a bad scalar, e.g. !!float abc
+        raise StudyError(f"yaml: {e}") from None
     return validate(doc, source=str(path), sha256=hashlib.sha256(data).hexdigest())
 
 
 # -- validation ------------------------------------------------------------------------
 
 def _number(value, place) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        hint = ""
-        if isinstance(value, str) and re.fullmatch(r"[-+]?\d+[eE][-+]?\d+", value.strip()):
-            hint = " (YAML reads this as text: write it with a decimal point, e.g. 1.0e-3)"
-        raise StudyError(f"{place}: {value!r} must be a number{hint}")
-    if not math.isfinite(value):
-        raise StudyError(f"{place}: {value!r} must be a finite number")
-    return float(value)
+    return check_finite(value, place)
 
 
 def _string(value, place) -> str:
@@ -162,7 +189,9 @@ def _keys(doc, place, allowed, what="key"):
         raise StudyError(f"{place}: {_short(doc)} must be a mapping (key: value lines)")
     for k in doc:
         if k not in allowed:
-            raise StudyError(f"{_join(place, k)}: unknown {what} (expected one of "
+            near = difflib.get_close_matches(str(k), allowed, n=1)
+            hint = f"; did you mean {near[0]}?" if near else ""
+            raise StudyError(f"{_join(place, k)}: unknown {what}{hint} (expected one of "
                              f"{', '.join(allowed)})")
 
 
@@ -176,16 +205,11 @@ def _short(value):
 
 
 def _factor_value(factor, value, place) -> float:
+    """A factor's value: a finite number (C10 within its range); t, h and gamma are checked
+    per requested point, where their rules need the other factors."""
     x = _number(value, place)
-    rules = {
-        "C10_MPa": (x > 0, "must be > 0"),
-        "gamma_J_m2": (x > 0, "must be > 0"),
-        "t_over_R": (0 < x <= 1, "must be > 0 (t > 0)" if x <= 0 else "must be <= 1 (t <= R)"),
-        "h_over_R": (0 < x <= 1, "must be > 0 (h > 0)" if x <= 0 else "must be <= 1 (h <= R)"),
-    }
-    ok, rule = rules[factor]
-    if not ok:
-        raise StudyError(f"{place}: {x:g} {rule}")
+    if factor == "C10_MPa":
+        check_C10(x, place)
     return x
 
 
@@ -210,6 +234,15 @@ def _factor_lists(doc, place) -> dict:
 
 def validate(doc, source: str = "", sha256: str = "") -> Study:
     """Check a loaded YAML document and return the Study; raises StudyError."""
+    try:
+        return _validate(doc, source, sha256)
+    except StudyError:
+        raise
+    except InputError as e:     # a solver rule, already named with the file's place
+        raise StudyError(str(e)) from None
+
+
+def _validate(doc, source, sha256) -> Study:
     if not isinstance(doc, dict):
         raise StudyError(f"the study must be a YAML mapping (key: value lines), not "
                          f"{_short(doc)}")
@@ -224,8 +257,7 @@ def validate(doc, source: str = "", sha256: str = "") -> Study:
     if "R_mm" not in doc:
         raise StudyError("R_mm: missing (required: outer radius of curvature in mm)")
     R_mm = _number(doc["R_mm"], "R_mm")
-    if not R_mm > 0:
-        raise StudyError(f"R_mm: {R_mm:g} must be > 0")
+    check_R(R_mm, "R_mm")
 
     base = {}
     if "base" in doc:
@@ -254,9 +286,6 @@ def validate(doc, source: str = "", sha256: str = "") -> Study:
     if mesh not in MESHES:
         raise StudyError(f"mesh: {mesh!r} must be one of {', '.join(MESHES)}")
     delta_max = _number(doc.get("delta_max_over_R", 0.25), "delta_max_over_R")
-    if not 0 < delta_max <= DELTA_MAX_LIMIT:
-        rule = "must be > 0" if delta_max <= 0 else f"must be <= {DELTA_MAX_LIMIT:g}"
-        raise StudyError(f"delta_max_over_R: {delta_max:g} {rule}")
 
     outputs = Outputs()
     if "outputs" in doc:
@@ -295,24 +324,16 @@ def requested(study: Study):
 
 
 def _check_points(study: Study):
-    """Every requested (t/R, h/R) pair must be a valid cap deeper than delta_max, and every
-    gamma / (C10 R) within what the relaxation paths are built for."""
+    """Every requested shell is a valid cap deeper than delta_max, and every gamma /
+    (C10 R) within what the relaxation paths are built for (the solver's rules)."""
     seen = set()
+    R = study.R_mm
     for point in requested(study):
         (t, t_place), (h, h_place) = point["t_over_R"], point["h_over_R"]
         (C10, c_place), (gamma, g_place) = point["C10_MPa"], point["gamma_J_m2"]
-        g = gamma_hat(gamma, C10, study.R_mm)
-        if g > GAMMA_MAX * (1 + 1e-12):
-            raise StudyError(f"{g_place}: {gamma:g} J/m^2 with C10 = {C10:g} MPa ({c_place}) and "
-                             f"R = {study.R_mm:g} mm gives gamma/(C10 R) = {g:.4g}, which must be "
-                             f"<= {GAMMA_MAX:g} (range of the relaxation paths)")
-        if (t, h) in seen:
-            continue
-        seen.add((t, h))
-        try:
+        check_gamma(gamma_hat(gamma, C10, R), GAMMA_MAX, g_place, f"{gamma:g} J/m^2",
+                    f"with C10 = {C10:g} MPa ({c_place}) and R = {R:g} mm")
+        if (t, h) not in seen:
+            seen.add((t, h))
             check_cap(t, h, t_place, h_place)
-        except InputError as e:
-            raise StudyError(str(e)) from None
-        if study.delta_max_over_R >= h:
-            raise StudyError(f"delta_max_over_R: {study.delta_max_over_R:g} must be < h/R "
-                             f"({h:g}, {h_place})")
+            check_delta_max(study.delta_max_over_R, h, "delta_max_over_R", h_place)

@@ -220,7 +220,7 @@ def _relaxation_curves(served, index, shells, C10s, R) -> dict:
     P = _padded(shells, {j: [r.P for r in v] for j, v in rel.items()}, width)
     U = _padded(shells, {j: [r.U for r in v] for j, v in rel.items()}, width)
     a = _padded(shells, {j: [r.a for r in v] for j, v in rel.items()}, ())
-    used = _padded(shells, {j: [float(not (r.centre_lifts or r.penetration)) for r in v]
+    used = _padded(shells, {j: [float(r.usable) for r in v]
                             for j, v in rel.items()}, ())
     c = C10s[:, None, None, None, None]
     S, K = ("t_over_R", "h_over_R", "relaxation"), ("t_over_R", "h_over_R", "relaxation",

@@ -1,10 +1,37 @@
 """shell-adhesion: adhesion and pull-off of a soft hyperelastic spherical-cap shell on a
 rigid plane (axisymmetric finite elements and Maugis' energy method).
 
-Subpackages: `shell_adhesion.solver` (one shell, pure computation, dimensionless inside),
+    import shell_adhesion as sa
+    case = sa.solve_case(R_mm=20, t_mm=3, h_mm=20, C10_MPa=0.3, gamma_J_m2=[30])
+    case.to_dataset()             # curves along named dimensions, units on every variable
+    ds = sa.open_results("results/paper.nc")
+
+The same functions serve the ``shell-adhesion`` command.  Subpackages:
+`shell_adhesion.solver` (one shell, pure computation, dimensionless inside),
 `shell_adhesion.study` (parameter studies on dask, the results cube, the command line),
 `shell_adhesion.catalogue` (the store of solved path sets).
 """
+from importlib import import_module
+
 from .solver import __version__
 
-__all__ = ["__version__"]
+# public name -> module that defines it, imported on first use (so that importing the
+# package stays light and the command line starts fast)
+_LAZY = {
+    "solve_case": "shell_adhesion.study.case",
+    "CaseResult": "shell_adhesion.study.case",
+    "open_results": "shell_adhesion.study.analysis",
+    "run_study": "shell_adhesion.study.run",
+}
+
+__all__ = ["__version__", *_LAZY]
+
+
+def __getattr__(name):
+    if name in _LAZY:
+        return getattr(import_module(_LAZY[name]), name)
+    raise AttributeError(f"module 'shell_adhesion' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_LAZY))

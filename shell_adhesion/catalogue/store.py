@@ -119,6 +119,7 @@ class Catalogue:
         index = self.dir / INDEX
         if not create and not index.exists():
             raise FileNotFoundError(f"no catalogue at {self.dir}")
+        check_index(self.dir)
         if create:
             self.files.mkdir(parents=True, exist_ok=True)
         self.db = sqlite3.connect(index, timeout=TIMEOUT_S, isolation_level=None)
@@ -304,3 +305,77 @@ def format_entries(rows) -> str:
             line += f"  ({r['reason']})"
         lines.append(line)
     return "\n".join(lines)
+
+
+# -- the index's health, and rebuilding it from the stored files ---------------------------
+
+class CorruptIndex(ValueError):
+    """The index file of a catalogue folder is not a readable catalogue index."""
+
+
+def check_index(directory) -> None:
+    """Raise CorruptIndex unless `directory`'s index is absent or a sound SQLite catalogue
+    index.  Reads the file as it is on disk (immutable, read-only): creates nothing."""
+    index = Path(directory) / INDEX
+    if not index.exists():
+        return
+    try:
+        db = sqlite3.connect(index.resolve().as_uri() + "?mode=ro&immutable=1", uri=True)
+        try:
+            check = db.execute("PRAGMA quick_check").fetchone()[0]
+            tables = {r[0] for r in db.execute("SELECT name FROM sqlite_master "
+                                                "WHERE type = 'table'")}
+        finally:
+            db.close()
+    except sqlite3.Error as e:
+        check, tables = str(e), set()
+    if check == "ok" and tables and "pathsets" not in tables:
+        check = "it has no pathsets table"
+    if check != "ok":
+        raise CorruptIndex(f"{index}: not a catalogue index ({check})")
+
+
+def rebuild_index(directory) -> tuple:
+    """Rebuild the index of `directory` from its stored files: (rows made, [reasons of the
+    files left out]).  The old index, if any, is kept beside as index.sqlite.old-<time>
+    (the record of past runs is not in the files and stays there).  Not while a study
+    writes to the folder."""
+    import netCDF4
+    import hashlib
+
+    directory = Path(directory)
+    stamp = datetime.now(timezone.utc).strftime("%Y%m%dT%H%M%SZ")
+    for suffix in ("", "-wal", "-shm"):
+        old = directory / (INDEX + suffix)
+        if old.exists():
+            old.rename(directory / f"{INDEX}.old-{stamp}{suffix}")
+    made, skipped = 0, []
+    with Catalogue(directory) as cat:
+        for path in sorted(cat.files.glob("*.nc")):
+            data = path.read_bytes()
+            try:
+                with netCDF4.Dataset("stored.nc", mode="r", memory=data) as nc:
+                    attrs = {k: nc.getncattr(k) for k in nc.ncattrs()}
+                    sizes = {k: len(v) for k, v in nc.dimensions.items()}
+                    for v in nc.variables.values():
+                        v[...]          # every value decodes
+                key = json.loads(attrs["key"])
+                fp = attrs["fingerprint"]
+            except Exception as e:      # any decoding failure: the file cannot be trusted
+                skipped.append(f"{path.name}: cannot be read ({type(e).__name__})")
+                continue
+            if not (fp == path.stem == fingerprint(key)):
+                skipped.append(f"{path.name}: its name, fingerprint and key do not agree")
+                continue
+            stats = json.loads(attrs.get("stats", "{}"))
+            with cat._write():
+                cat._upsert(dict(
+                    fingerprint=fp, family=family(key), status="ok",
+                    file=f"{cat.files.name}/{path.name}",
+                    sha256=hashlib.sha256(data).hexdigest(), bytes=len(data),
+                    relaxations=sizes.get("relaxation"), loading_states=sizes.get("loading_state"),
+                    loading_s=stats.get("loading_s"), relaxation_s=stats.get("relaxation_s"),
+                    stats=json.dumps(stats, sort_keys=True), reason=None,
+                    **cat._common(key, "rebuilt from the stored file")))
+            made += 1
+    return made, skipped

@@ -1,13 +1,53 @@
-"""Dimensional report of one shell (the `shell-adhesion case` command's content).
+"""The result of one shell in units (study.case.CaseResult), as JSON-able data and as an
+xarray Dataset: lengths mm, forces N, energies mJ, C10 MPa, gamma J/m^2.
 
-Takes a dimensionless PathSet and returns plain dicts in mm, N, mJ, MPa, J/m^2.
+Both renderings read the same dimensional values (`_values`); the Dataset uses the names
+of the study's cube (P_star, a_eq, loading_P, relaxation_delta, ...), with the curves'
+abscissas as coordinates so that ``ds.P_eq.sel(gamma=30).plot(x="a_eq")`` works.
 """
 import numpy as np
+import xarray as xr
 
 from shell_adhesion.solver import theory
-from shell_adhesion.solver.case import PathSet
-from shell_adhesion.solver.scaling import energy_mJ, force_N, gamma_hat, length_mm
+from shell_adhesion.solver.scaling import energy_mJ, force_N, length_mm
 
+from .dataset import _CURVES, _PULL_OFF     # the cube's names, units and long names
+
+def _attrs(units, long_name):
+    return dict(units=units, long_name=long_name)
+
+
+def _values(result):
+    """Dimensional arrays of a CaseResult: (loading, relaxations, adhesion).
+
+    loading: dict of arrays; relaxations: list of dicts; adhesion: list of (gamma,
+    pull-off values dict, equilibrium curve dict).
+    """
+    inp, ps = result.input, result.pathset
+    R, C10 = inp.R_mm, inp.C10_MPa
+    L = lambda x: length_mm(np.asarray(x, dtype=float), R)
+    F = lambda x: force_N(np.asarray(x, dtype=float), C10, R)
+    E = lambda x: energy_mJ(np.asarray(x, dtype=float), C10, R)
+    loading = dict(delta=L(ps.loading_delta), P=F(ps.loading_P), a=L(ps.loading_a),
+                   U=E(ps.loading_U))
+    relaxations = [dict(a=float(L(r.a)), delta=L(r.delta), P=F(r.P), U=E(r.U),
+                        ended_by=r.ended_by, centre_lifts=bool(r.centre_lifts),
+                        penetration=bool(r.penetration), usable=r.usable)
+                   for r in ps.relaxations] if result.adhesion else []
+    adhesion = []
+    for g, eq, po in result.adhesion:
+        conv = dict(force=F, length=L)
+        values = {k: float(conv[kind](getattr(po, k))) for k, (_, _, kind) in _PULL_OFF.items()}
+        values["eta"] = theory.eta_of(values["P_star"], R, inp.t_mm, C10, g)
+        values["jkr_P_star"] = theory.jkr_P_star_N(R, g)
+        curve = dict(a=L(eq.a), delta=L(eq.delta), P=F(eq.P),
+                     stable_fixed_load=np.asarray(eq.stable_fixed_load, dtype=bool),
+                     stable_fixed_grips=np.asarray(eq.stable_fixed_grips, dtype=bool))
+        adhesion.append((g, values, curve))
+    return loading, relaxations, adhesion
+
+
+# -- JSON ------------------------------------------------------------------------------
 
 def _num(v, digits=10):
     """A JSON-safe number: None where the value is undefined (NaN)."""
@@ -19,48 +59,117 @@ def _list(x, digits=10):
     return [_num(v, digits) for v in np.asarray(x, dtype=float)]
 
 
-def loading_dict(ps: PathSet, R_mm, C10_MPa):
-    return {"delta_mm": _list(length_mm(ps.loading_delta, R_mm)),
-            "P_N": _list(force_N(ps.loading_P, C10_MPa, R_mm)),
-            "a_mm": _list(length_mm(ps.loading_a, R_mm)),
-            "U_E_mJ": _list(energy_mJ(ps.loading_U, C10_MPa, R_mm))}
-
-
-def relaxation_list(ps: PathSet, R_mm, C10_MPa):
-    out = []
-    for r in ps.relaxations:
-        out.append({"a_mm": float(length_mm(r.a, R_mm)),
-                    "delta1_mm": float(length_mm(r.delta[0], R_mm)),
-                    "P1_N": float(force_N(r.P[0], C10_MPa, R_mm)),
-                    "delta_mm": _list(length_mm(r.delta, R_mm)),
-                    "P_N": _list(force_N(r.P, C10_MPa, R_mm)),
-                    "U_E_mJ": _list(energy_mJ(r.U, C10_MPa, R_mm)),
-                    "ended_by": r.ended_by,
-                    "centre_lifts": bool(r.centre_lifts),
-                    "penetration": bool(r.penetration)})
+def as_dict(result) -> dict:
+    """Plain JSON-able data: input, loading, and with gamma relaxation, equilibrium and
+    pull_off (one entry per gamma), provenance."""
+    loading, relaxations, adhesion = _values(result)
+    out = {"input": result.input.as_dict(),
+           "loading": {"delta_mm": _list(loading["delta"]), "P_N": _list(loading["P"]),
+                       "a_mm": _list(loading["a"]), "U_E_mJ": _list(loading["U"])}}
+    if adhesion:
+        out["relaxation"] = [
+            {"a_mm": _num(r["a"]), "delta1_mm": _num(r["delta"][0]), "P1_N": _num(r["P"][0]),
+             "delta_mm": _list(r["delta"]), "P_N": _list(r["P"]), "U_E_mJ": _list(r["U"]),
+             "ended_by": r["ended_by"], "centre_lifts": r["centre_lifts"],
+             "penetration": r["penetration"]} for r in relaxations]
+        out["equilibrium"] = [
+            {"gamma_J_m2": g, "a_mm": _list(c["a"]), "P_N": _list(c["P"]),
+             "delta_mm": _list(c["delta"]),
+             "stable_fixed_load": [bool(v) for v in c["stable_fixed_load"]],
+             "stable_fixed_grips": [bool(v) for v in c["stable_fixed_grips"]]}
+            for g, _, c in adhesion]
+        out["pull_off"] = [
+            {"gamma_J_m2": g,
+             "fixed_load": {"P_N": _num(v["P_star"]), "delta_mm": _num(v["delta_star"]),
+                            "a_mm": _num(v["a_star"])},
+             "fixed_grips": {"P_N": _num(v["P_dagger"]), "delta_mm": _num(v["delta_dagger"]),
+                             "a_mm": _num(v["a_dagger"])},
+             "a0_mm": _num(v["a0"]), "eta": _num(v["eta"]), "jkr_P_star_N": _num(v["jkr_P_star"])}
+            for g, v, _ in adhesion]
+    out["provenance"] = result.provenance
     return out
 
 
-def adhesion_dicts(ps: PathSet, R_mm, t_mm, C10_MPa, gammas_J_m2):
-    """Equilibrium curves and pull-off points, one entry per gamma."""
-    surface = ps.surface()
-    equilibria, pull_offs = [], []
-    for g in gammas_J_m2:
-        eq, po = ps.pull_off(gamma_hat(g, C10_MPa, R_mm), surface)
-        L = lambda v: _num(length_mm(v, R_mm))
-        F = lambda v: _num(force_N(v, C10_MPa, R_mm))
-        equilibria.append({"gamma_J_m2": g, "a_mm": _list(length_mm(eq.a, R_mm)),
-                           "P_N": _list(force_N(eq.P, C10_MPa, R_mm)),
-                           "delta_mm": _list(length_mm(eq.delta, R_mm)),
-                           "stable_fixed_load": [bool(v) for v in eq.stable_fixed_load],
-                           "stable_fixed_grips": [bool(v) for v in eq.stable_fixed_grips]})
-        P_star = F(po.P_star)
-        pull_offs.append({"gamma_J_m2": g,
-                          "fixed_load": {"P_N": P_star, "delta_mm": L(po.delta_star),
-                                         "a_mm": L(po.a_star)},
-                          "fixed_grips": {"P_N": F(po.P_dagger), "delta_mm": L(po.delta_dagger),
-                                          "a_mm": L(po.a_dagger)},
-                          "a0_mm": L(po.a0),
-                          "eta": theory.eta_of(P_star, R_mm, t_mm, C10_MPa, g),
-                          "jkr_P_star_N": theory.jkr_P_star_N(R_mm, g)})
-    return equilibria, pull_offs
+# -- Dataset ---------------------------------------------------------------------------
+
+def _padded(arrays):
+    """(len(arrays), longest) array, each row NaN-padded."""
+    width = max([len(a) for a in arrays], default=0)
+    out = np.full((len(arrays), width), np.nan)
+    for i, a in enumerate(arrays):
+        out[i, :len(a)] = a
+    return out
+
+
+def as_dataset(result) -> xr.Dataset:
+    """Named dimensions gamma, loading_state, relaxation, relaxation_state and point;
+    `units` and `long_name` on every variable and coordinate."""
+    inp, prov = result.input, result.provenance
+    loading, relaxations, adhesion = _values(result)
+    n_load = len(loading["delta"])
+    gammas = np.array([g for g, _, _ in adhesion], dtype=float)
+    curves = [c for _, _, c in adhesion]
+    data = {
+        "loading_P": ("loading_state", loading["P"],
+                      _attrs("N", "rim force P on loading without adhesion")),
+        "loading_a": ("loading_state", loading["a"],
+                      _attrs("mm", "contact radius a on loading without adhesion")),
+        "loading_U": ("loading_state", loading["U"],
+                      _attrs("mJ", "strain energy U on loading without adhesion")),
+    }
+    coords = {
+        "R": ((), inp.R_mm, _attrs("mm", "outer radius of curvature R")),
+        "t_mm": ((), inp.t_mm, _attrs("mm", "shell thickness t")),
+        "h_mm": ((), inp.h_mm, _attrs("mm", "cap depth h")),
+        "C10": ((), inp.C10_MPa, _attrs("MPa", "neo-Hookean constant C10 (shear modulus / 2)")),
+        "loading_state": ("loading_state", np.arange(n_load),
+                          _attrs("1", "index of the loading state (increasing delta)")),
+        "loading_delta": ("loading_state", loading["delta"],
+                          _attrs("mm", "rim displacement delta on loading without adhesion")),
+    }
+    if adhesion:
+        K = ("relaxation", "relaxation_state")
+        data["relaxation_P"] = (K, _padded([r["P"] for r in relaxations]), _attrs(
+            "N", "rim force P along the relaxation at fixed contact radius"))
+        data["relaxation_U"] = (K, _padded([r["U"] for r in relaxations]), _attrs(
+            "mJ", "strain energy U_E along the relaxation at fixed contact radius"))
+        data["relaxation_used"] = ("relaxation", np.array(
+            [int(r["usable"]) for r in relaxations], dtype=np.int8), _attrs(
+            "1", "path used by the energy method (1), or left out because the centre lifts "
+                 "or a free node touches (0)"))
+        coords["relaxation_delta"] = (K, _padded([r["delta"] for r in relaxations]), _attrs(
+            "mm", "rim displacement delta along the relaxation at fixed contact radius"))
+        coords["relaxation_a"] = ("relaxation", np.array([r["a"] for r in relaxations]),
+                                  _attrs("mm", "held contact radius a of the path"))
+        coords["relaxation"] = ("relaxation", np.arange(len(relaxations)), _attrs(
+            "1", "index of the relaxation path (increasing held contact radius)"))
+        coords["relaxation_state"] = (
+            "relaxation_state", np.arange(data["relaxation_P"][1].shape[1]),
+            _attrs("1", "index along a relaxation path (delta decreasing from loading)"))
+        for k, (units, long_name, _) in _PULL_OFF.items():
+            data[k] = ("gamma", np.array([v[k] for _, v, _ in adhesion]),
+                       _attrs(units, long_name))
+        data["eta"] = ("gamma", np.array([v["eta"] for _, v, _ in adhesion]), _attrs(
+            "1", "eta of eq. 3: |P*| / [gamma^4 R^4 (1 - nu^2) / (E t^2)]^(1/3)"))
+        data["jkr_P_star"] = ("gamma", np.array([v["jkr_P_star"] for _, v, _ in adhesion]),
+                              _attrs("N", "JKR pull-off force of a solid sphere of radius R"))
+        E = ("gamma", "point")
+        for k, (units, long_name) in _CURVES.items():
+            values = _padded([c[k.removesuffix("_eq")].astype(float) for c in curves])
+            (coords if k == "a_eq" else data)[k] = (E, values, _attrs(units, long_name))
+        coords["point"] = ("point", np.arange(data["P_eq"][1].shape[1]), _attrs(
+            "1", "index along the equilibrium curve (increasing contact radius)"))
+    coords["gamma"] = ("gamma", gammas, _attrs("J m-2", "work of adhesion gamma"))
+    attrs = dict(
+        title=f"shell-adhesion case: R = {inp.R_mm:g} mm, t = {inp.t_mm:g} mm, "
+              f"h = {inp.h_mm:g} mm, C10 = {inp.C10_MPa:g} MPa",
+        Conventions="CF-1.8",
+        source=f"shell-adhesion {prov.get('version', '')}: axisymmetric finite elements of a "
+               "neo-Hookean spherical-cap shell on a rigid plane, Maugis' energy method",
+        comment="P > 0 compression, delta > 0 approach; curves NaN-padded",
+        interface=inp.interface, mesh=inp.mesh, delta_max_mm=inp.delta_max_mm,
+        dofs=prov.get("dofs", -1), newton_iterations=prov.get("newton_iterations", -1),
+        wall_s=prov.get("wall_s", float("nan")),
+        relaxation_gamma_max_over_C10R=prov.get("relaxation_gamma_max_over_C10R",
+                                                float("nan")))
+    return xr.Dataset(data, coords=coords, attrs=attrs)

@@ -2,28 +2,33 @@
 
     shell-adhesion case --R 20 --t 3 --h 20 --C10 0.3 [--gamma 30 ...] [--json]
     shell-adhesion run workflow.yaml --out results/ [--scheduler ADDRESS] [--catalogue DIR]
-    shell-adhesion catalogue list [--catalogue DIR]
+    shell-adhesion catalogue list|rebuild [--catalogue DIR]
     shell-adhesion tables results/paper.nc [--format md|csv|tex] [--table cases|paper|all] [--out FILE]
     shell-adhesion plot results/paper.nc [--out DIR] [--format png,pdf] [--dpi 150]
     shell-adhesion analyse results/paper.nc
 
 `tables`, `plot` and `analyse` read a results cube and never run the solver.
 
-Bad input prints one line naming the flag, the value and the rule, and exits with 2.
+Bad input prints one line naming the flag, the value and the rule, and exits with 2,
+before any computation and without creating anything.  The rules are the solver's
+(`study.case.case_input` for `case`, `study.config` for study files).  `case` has no
+`-h`: the depth is `--h`, help is `--help`.
 """
 import argparse
-import json
-import math
+import os
 from pathlib import Path
 import sys
 import time
 
-from shell_adhesion.solver import GAMMA_MAX, INTERFACES, ConvergenceError, InputError, __version__
-from shell_adhesion.solver.path import Settings
-from shell_adhesion.solver.scaling import gamma_hat
+from shell_adhesion.solver import INTERFACES, ConvergenceError, InputError, __version__
 
-MESHES = ("coarse", "default", "fine")
+from .case import MESHES
+
 FIGURE_FORMATS = ("png", "pdf", "svg")
+# the flag of each input of `case` (study.case.case_input names the fields this way)
+CASE_FLAGS = dict(R_mm="--R", t_mm="--t", h_mm="--h", C10_MPa="--C10",
+                  gamma_J_m2="--gamma", delta_max_mm="--delta-max", interface="--interface",
+                  mesh="--mesh")
 
 
 class _Parser(argparse.ArgumentParser):
@@ -31,98 +36,39 @@ class _Parser(argparse.ArgumentParser):
         self.exit(2, f"{self.prog}: error: {message}\n")
 
 
+class _OneDash(argparse.Action):
+    """A single-dash spelling of a `case` flag (`-h 20`): refused, with the right flag."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        right = "-" + option_string
+        given = f"{option_string} {values}" if values is not None else option_string
+        parser.error(f"{given}: not an option (the flag is {right}, two dashes"
+                     + (f", e.g. {right} {values}" if values is not None else "")
+                     + "; help is --help)")
+
+
 def _number(flag, text, unit):
+    """A flag's text as a float (finite or not: the rules say which values are fine)."""
     try:
-        value = float(text)
+        return float(text)
     except (TypeError, ValueError):
         raise InputError(f"{flag}: {text!r} must be a number ({unit})") from None
-    if not math.isfinite(value):
-        raise InputError(f"{flag}: {text!r} must be a finite number ({unit})")
-    return value
-
-
-def _case_input(ns):
-    """Validated dimensional input of `case`; raises InputError naming the flag."""
-    R = _number("--R", ns.R, "mm")
-    t = _number("--t", ns.t, "mm")
-    h = _number("--h", ns.h, "mm")
-    C10 = _number("--C10", ns.C10, "MPa")
-    if R <= 0:
-        raise InputError(f"--R: {R:g} must be > 0 (mm)")
-    if not 0 < t <= R:
-        raise InputError(f"--t: {t:g} must satisfy 0 < t <= R = {R:g} (mm)")
-    if not 0 < h <= R:
-        raise InputError(f"--h: {h:g} must satisfy 0 < h <= R = {R:g} (mm)")
-    if t < R and h <= t:
-        raise InputError(f"--h: {h:g} must be > t = {t:g} (mm) unless t = R (solid cap)")
-    if C10 <= 0:
-        raise InputError(f"--C10: {C10:g} must be > 0 (MPa)")
-    delta_max = R / 4 if ns.delta_max is None else _number("--delta-max", ns.delta_max, "mm")
-    if not 0 < delta_max < h:
-        raise InputError(f"--delta-max: {delta_max:g} must satisfy 0 < delta-max < h = {h:g} (mm)")
-    gammas = [_number("--gamma", g, "J/m^2") for g in ns.gamma or []]
-    for g in gammas:
-        if g <= 0:
-            raise InputError(f"--gamma: {g:g} must be > 0 (J/m^2)")
-        g_hat = gamma_hat(g, C10, R)
-        if g_hat > GAMMA_MAX:
-            raise InputError(f"--gamma: {g:g} gives gamma/(C10 R) = {g_hat:.4g}, which must be "
-                             f"<= {GAMMA_MAX:g} (supported range of the relaxation paths)")
-    return dict(R_mm=R, t_mm=t, h_mm=h, C10_MPa=C10, delta_max_mm=delta_max,
-                gamma_J_m2=gammas, interface=ns.interface, mesh=ns.mesh)
 
 
 def _run_case(ns):
-    from shell_adhesion.solver.case import solve_paths
-    from tqdm import tqdm
+    from .case import case_input, solve_case
 
-    from .case_report import adhesion_dicts, loading_dict, relaxation_list
-
-    inp = _case_input(ns)
-    R, C10 = inp["R_mm"], inp["C10_MPa"]
-    g_hats = [gamma_hat(g, C10, R) for g in inp["gamma_J_m2"]]
-    gamma_max = max(g_hats) * 1.25 if g_hats else GAMMA_MAX
-    t0 = time.perf_counter()
-    with tqdm(total=round(inp["delta_max_mm"], 6), unit="mm", desc="loading", file=sys.stderr,
-              disable=None, leave=False) as bar:
-        def progress(delta):
-            bar.update(round(delta * R, 6) - bar.n)
-
-        def path_progress(done, total):
-            if done == 1:
-                bar.set_description("relaxation paths")
-                bar.reset(total)
-            bar.update(1)
-        ps, d, loading = solve_paths(inp["t_mm"] / R, inp["h_mm"] / R, inp["interface"],
-                                     inp["mesh"], inp["delta_max_mm"] / R, gamma_max,
-                                     relax_paths=bool(g_hats), progress=progress,
-                                     path_progress=path_progress)
-    t1 = t0 + ps.stats["loading_s"]
-    t2 = t1 + ps.stats["relaxation_s"]
-    relaxations = ps.relaxations
-    out = {"input": inp, "loading": loading_dict(ps, R, C10)}
-    if g_hats:
-        out["relaxation"] = relaxation_list(ps, R, C10)
-        out["equilibrium"], out["pull_off"] = adhesion_dicts(ps, R, inp["t_mm"], C10,
-                                                             inp["gamma_J_m2"])
-    t3 = time.perf_counter()
-    settings = Settings()
-    out["provenance"] = {
-        "version": __version__, "mesh": inp["mesh"], "interface": inp["interface"],
-        "dofs": int(d.ndof), "elements": int(d.capmesh.mesh.nelements),
-        "newton_iterations": loading.timer.newton_iterations
-        + sum(r.newton_iterations for r in relaxations),
-        "wall_s": round(t3 - t0, 3),
-        "time_split_s": {"loading": round(t1 - t0, 3), "relaxation": round(t2 - t1, 3),
-                         "energy_method": round(t3 - t2, 3)},
-        "tolerances": {"newton_rtol": settings.tol, "newton_atol": settings.atol,
-                       "gap_tol_over_R": settings.gap_tol},
-        "relaxation_gamma_max_over_C10R": gamma_max}
+    inp = case_input(_number("--R", ns.R, "mm"), _number("--t", ns.t, "mm"),
+                     _number("--h", ns.h, "mm"), _number("--C10", ns.C10, "MPa"),
+                     [_number("--gamma", g, "J/m^2") for g in ns.gamma or []],
+                     None if ns.delta_max is None else _number("--delta-max", ns.delta_max, "mm"),
+                     ns.interface, ns.mesh, names=CASE_FLAGS)
+    result = solve_case(inp.R_mm, inp.t_mm, inp.h_mm, inp.C10_MPa, inp.gamma_J_m2,
+                        delta_max_mm=inp.delta_max_mm, interface=inp.interface, mesh=inp.mesh)
     if ns.json:
-        json.dump(out, sys.stdout, indent=1, allow_nan=False)
-        sys.stdout.write("\n")
+        print(result.to_json())
     else:
-        _print_case(out)
+        _print_case(result.to_dict())
     return 0
 
 
@@ -221,7 +167,11 @@ def _parser():
                      description="Adhesion of a soft hyperelastic spherical-cap shell on a rigid plane.")
     parser.add_argument("--version", action="version", version=__version__)
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
-    case = sub.add_parser("case", help="solve one shell: loading curve, and pull-off for each --gamma")
+    case = sub.add_parser("case", help="solve one shell: loading curve, and pull-off for each --gamma",
+                          add_help=False)
+    case.add_argument("--help", action="help", help="show this help message and exit")
+    for flag, nargs in (("-R", "?"), ("-t", "?"), ("-h", "?"), ("-C10", "?")):
+        case.add_argument(flag, action=_OneDash, nargs=nargs, help=argparse.SUPPRESS)
     case.add_argument("--R", required=True, help="outer radius of curvature R [mm]")
     case.add_argument("--t", required=True, help="shell thickness t [mm], 0 < t <= R (t = R: solid)")
     case.add_argument("--h", required=True, help="depth h from apex to base plane [mm], t < h <= R")
@@ -239,9 +189,11 @@ def _parser():
     run.add_argument("--out", default="results", help="output folder (default results/)")
     run.add_argument("--scheduler", default=None, help="address of a dask.distributed scheduler")
     run.add_argument("--catalogue", default=None, help="catalogue folder")
-    cat = sub.add_parser("catalogue", help="inspect the catalogue of solved path sets")
-    cat.add_argument("action", choices=("list",))
-    cat.add_argument("--catalogue", default=None, help="catalogue folder")
+    cat = sub.add_parser("catalogue", help="list the catalogue of solved path sets, or rebuild "
+                                           "its index from the stored files")
+    cat.add_argument("action", choices=("list", "rebuild"))
+    cat.add_argument("--catalogue", default=None, metavar="DIR",
+                     help="catalogue folder (default: $SHELL_ADHESION_CATALOGUE or ./catalogue-data)")
     tab = sub.add_parser("tables", help="tables from a results cube: every case, or ours beside "
                                         "the paper's (never runs the solver)")
     tab.add_argument("results", help="results netCDF written by `run` (results/<name>.nc)")
@@ -265,9 +217,55 @@ def _parser():
     return parser
 
 
+def _catalogue_dir(ns):
+    """(folder, how the user named it) of the catalogue a command uses."""
+    from shell_adhesion.catalogue.store import ENV_VAR, default_dir
+
+    if ns.catalogue is not None:
+        return Path(ns.catalogue), "--catalogue"
+    return default_dir(), f"${ENV_VAR}" if os.environ.get(ENV_VAR) else "catalogue"
+
+
+def _check_catalogue(ns):
+    """Refuse a catalogue folder the command cannot use, before anything runs."""
+    from shell_adhesion.catalogue.store import INDEX, CorruptIndex, check_index
+
+    directory, flag = _catalogue_dir(ns)
+    if ns.command == "catalogue" and ns.action == "rebuild":
+        if not (directory / "pathsets").is_dir():
+            raise InputError(f"{flag}: {directory}: no stored path sets there (no pathsets/ "
+                             "folder)")
+        return
+    if ns.command == "catalogue" and ns.catalogue is not None and not (directory / INDEX).is_file():
+        raise InputError(f"{flag}: {directory}: no catalogue there (no {INDEX})")
+    try:
+        check_index(directory)
+    except CorruptIndex as e:
+        hint = f" --catalogue {ns.catalogue}" if ns.catalogue is not None else ""
+        raise InputError(f"{flag}: {e}; `shell-adhesion catalogue rebuild{hint}` rebuilds it "
+                         "from the stored files") from None
+
+
+def _run_catalogue(ns):
+    from shell_adhesion.catalogue.store import format_entries, list_entries, rebuild_index
+
+    directory, _ = _catalogue_dir(ns)
+    if ns.action == "list":
+        print(format_entries(list_entries(directory)))
+        return 0
+    made, skipped = rebuild_index(directory)
+    for why in skipped:
+        print(f"left out {why}", file=sys.stderr)
+    print(f"rebuilt the index of {directory}: {made} path sets, {len(skipped)} files left out")
+    return 0
+
+
 def main(argv=None):
+    """The `shell-adhesion` command; returns the exit code (0 ok, 1 failed, 2 bad input)."""
     ns = _parser().parse_args(argv)
     try:
+        if ns.command in ("run", "catalogue"):
+            _check_catalogue(ns)
         if ns.command == "case":
             return _run_case(ns)
         if ns.command == "run":
@@ -280,9 +278,7 @@ def main(argv=None):
         if ns.command in ("analyse", "summary"):
             return _run_analyse(ns)
         if ns.command == "catalogue":
-            from shell_adhesion.catalogue import format_entries, list_entries
-            print(format_entries(list_entries(ns.catalogue)))
-            return 0
+            return _run_catalogue(ns)
     except InputError as err:
         print(f"shell-adhesion: error: {err}", file=sys.stderr)
         return 2

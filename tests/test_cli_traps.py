@@ -1,0 +1,89 @@
+"""A command line without traps: every bad input gives exit 2, exactly one line on stderr,
+no traceback, and creates nothing (run in a fresh folder, compared before and after)."""
+from pathlib import Path
+import subprocess
+import sys
+
+import pytest
+
+from conftest import ENV
+
+CASE = ["case", "--R", "20", "--t", "3", "--h", "20", "--C10", "0.3"]
+STUDY = """\
+name: tiny
+R_mm: 20
+base: {C10_MPa: 0.3, t_over_R: 0.15, h_over_R: 1.0, gamma_J_m2: 30}
+mesh: coarse
+delta_max_over_R: 0.05
+"""
+
+
+def with_flag(flag, value):
+    args = list(CASE)
+    args[args.index(flag) + 1] = value
+    return args
+
+
+def corrupt_index(folder):
+    (folder / "catalogue-data").mkdir()
+    (folder / "catalogue-data" / "index.sqlite").write_bytes(b"not a database\n" * 64)
+
+
+def files(name, text):
+    def make(d):
+        (d / name).write_text(text)
+    return make
+
+
+# (id, files to make first, argv, text the one line must hold)
+BAD = [
+    ("R huge", None, with_flag("--R", "1e200"), "--R: 1e+200 must be from 0.001 to 10000 mm"),
+    ("R nan", None, with_flag("--R", "nan"), "--R: nan must be a finite number"),
+    ("t negative", None, with_flag("--t", "-1"), "--t (t/R = -1/20): -0.05 must"),
+    ("-h for the depth", None, CASE[:5] + ["-h", "20"] + CASE[7:], "-h 20: not an option (the flag is --h"),
+    ("corrupt index, list", corrupt_index, ["catalogue", "list"],
+     "catalogue-data/index.sqlite: not a catalogue index (file is not a database); "
+     "`shell-adhesion catalogue rebuild` rebuilds it"),
+    ("corrupt index, run", lambda d: (corrupt_index(d), (d / "s.yaml").write_text(STUDY)),
+     ["run", "s.yaml"], "catalogue: catalogue-data/index.sqlite: not a catalogue index"),
+    ("list names no catalogue", None, ["catalogue", "list", "--catalogue", "nowhere"],
+     "--catalogue: nowhere: no catalogue there (no index.sqlite)"),
+    ("rebuild names no catalogue", None, ["catalogue", "rebuild", "--catalogue", "nowhere"],
+     "--catalogue: nowhere: no stored path sets there"),
+    ("study over 1 MB", files("s.yaml", STUDY + "#" * 1_000_001 + "\n"), ["run", "s.yaml"],
+     "the study file is over 1 MB"),
+    ("duplicate key", files("s.yaml", STUDY + "mesh: fine\n"), ["run", "s.yaml"],
+     "duplicate key 'mesh'"),
+    ("unknown key", files("s.yaml", STUDY + "delta_max_over_r: 0.1\n"), ["run", "s.yaml"],
+     "delta_max_over_r: unknown key; did you mean delta_max_over_R?"),
+    ("YAML 1.2 number out of range", files("s.yaml", STUDY.replace("R_mm: 20", "R_mm: 1e200")),
+     ["run", "s.yaml"], "R_mm: 1e+200 must be from 0.001 to 10000 mm"),
+]
+
+
+def listing(folder: Path) -> dict:
+    return {str(p.relative_to(folder)): p.stat().st_size for p in sorted(folder.rglob("*"))}
+
+
+@pytest.mark.parametrize("make, argv, expected", [b[1:] for b in BAD], ids=[b[0] for b in BAD])
+def test_bad_input_exit_2_one_line_nothing_created(tmp_path, make, argv, expected):
+    if make is not None:
+        make(tmp_path)
+    before = listing(tmp_path)
+    env = {k: v for k, v in ENV.items() if k != "SHELL_ADHESION_CATALOGUE"}
+    out = subprocess.run([sys.executable, "-m", "shell_adhesion", *argv], cwd=tmp_path,
+                         env=env, capture_output=True, text=True, timeout=120)
+    assert out.returncode == 2, out.stderr
+    lines = out.stderr.splitlines()
+    assert len(lines) == 1 and "Traceback" not in out.stderr, out.stderr
+    assert expected in lines[0]
+    assert out.stdout == ""
+    assert listing(tmp_path) == before
+
+
+def test_help_still_works():
+    out = subprocess.run([sys.executable, "-m", "shell_adhesion", "case", "--help"], env=ENV,
+                         capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0 and "--h H" in out.stdout and "--delta-max" in out.stdout
+    assert "-h 20" not in out.stdout        # the refused spellings are not advertised
+    assert out.stdout.startswith("usage: shell-adhesion case")

@@ -8,6 +8,7 @@ xarray Dataset (`study.case_report`).  P > 0 compression, delta > 0 approach.
 """
 from dataclasses import dataclass, field
 import json
+from numbers import Real
 import sys
 import time
 
@@ -62,7 +63,7 @@ def case_input(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2=(), delta_max_mm=None,
     C10 = check_finite(C10_MPa, n["C10_MPa"], "MPa")
     delta_max = R / 4 if delta_max_mm is None else check_finite(delta_max_mm,
                                                                  n["delta_max_mm"], "mm")
-    if isinstance(gamma_J_m2, (int, float)):
+    if isinstance(gamma_J_m2, (str, Real)):
         gamma_J_m2 = [gamma_J_m2]
     gammas = tuple(check_finite(g, n["gamma_J_m2"], "J/m^2") for g in gamma_J_m2)
     check_R(R, n["R_mm"])

@@ -1,0 +1,144 @@
+"""The Python API: `shell_adhesion.solve_case` and what its result renders; the command line
+prints exactly `CaseResult.to_json()`; a foreign top-level `catalogue` package is harmless."""
+import json
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import shell_adhesion as sa
+from shell_adhesion.solver import InputError
+from shell_adhesion.solver.scaling import force_N, gamma_hat, length_mm
+from shell_adhesion.study import case as case_module
+from shell_adhesion.study.cli import main
+
+from conftest import ENV
+
+BASE = dict(R_mm=20, t_mm=3, h_mm=20, C10_MPa=0.3)
+GAMMAS = [30, 20]
+
+
+@pytest.fixture(scope="module")
+def solved():
+    return sa.solve_case(**BASE, gamma_J_m2=GAMMAS, delta_max_mm=2, mesh="coarse",
+                         progress=False)
+
+
+def test_exports():
+    from shell_adhesion.study.analysis import open_results
+    assert sa.solve_case is case_module.solve_case and sa.CaseResult is case_module.CaseResult
+    assert sa.open_results is open_results
+    assert {"solve_case", "CaseResult", "open_results", "run_study"} <= set(dir(sa))
+    with pytest.raises(AttributeError):
+        sa.no_such_thing
+
+
+@pytest.mark.parametrize("change, message", [
+    (dict(R_mm=math.nan), "R_mm: nan must be a finite number (mm)"),
+    (dict(R_mm=1e200), "R_mm: 1e+200 must be from 0.001 to 10000 mm"),
+    (dict(t_mm=25), "t_mm (t/R = 25/20): 1.25 must satisfy 0 < t <= R"),
+    (dict(C10_MPa=-1), "C10_MPa: -1 must be > 0"),
+    (dict(gamma_J_m2=[30, 900]), "gamma_J_m2: 900 J/m^2 with C10 = 0.3 MPa and R = 20 mm "
+                                 "gives gamma/(C10 R) = 0.15, which must be <= 0.03"),
+    (dict(gamma_J_m2="30"), "gamma_J_m2: '30' must be a number"),
+    (dict(delta_max_mm=25), "delta_max_mm (delta_max/R = 25/20): 1.25 must be <= 0.5"),
+    (dict(mesh="ultra"), "mesh: 'ultra' must be one of coarse, default, fine"),
+])
+def test_bad_input_raises_before_any_computation(monkeypatch, change, message):
+    def no_fe(*args, **kwargs):
+        raise AssertionError("the FE solver ran on bad input")
+    monkeypatch.setattr(case_module, "solve_paths", no_fe)
+    with pytest.raises(InputError) as e:
+        sa.solve_case(**dict(BASE, **change))
+    assert isinstance(e.value, ValueError)
+    assert str(e.value).startswith(message) and "\n" not in str(e.value)
+
+
+def test_dataset_named_dimensions_units_everywhere(solved):
+    ds = solved.to_dataset()
+    assert dict(ds.sizes).keys() >= {"gamma", "loading_state", "relaxation", "relaxation_state",
+                                     "point"}
+    for name, var in ds.variables.items():
+        assert var.attrs.get("units") and var.attrs.get("long_name"), name
+    assert list(ds.gamma.values) == GAMMAS and ds.gamma.units == "J m-2"
+    # curves are coordinates: select and plot against them
+    eq = ds.P_eq.sel(gamma=30)
+    assert eq.a_eq.units == "mm" and np.isfinite(eq.values).sum() > 3
+    import matplotlib
+    matplotlib.use("Agg")
+    assert ds.loading_P.plot(x="loading_delta")
+    # the dimensional values are the path set's, scaled by C10 R^2 and R
+    R, C10 = BASE["R_mm"], BASE["C10_MPa"]
+    ps = solved.pathset
+    np.testing.assert_allclose(ds.loading_P.values, force_N(ps.loading_P, C10, R), rtol=1e-14)
+    np.testing.assert_allclose(ds.loading_delta.values, length_mm(ps.loading_delta, R),
+                               rtol=1e-14)
+    assert ds.loading_delta.values[-1] == pytest.approx(2.0)
+    for g in GAMMAS:
+        _, po = ps.pull_off(gamma_hat(g, C10, R))
+        assert float(ds.P_star.sel(gamma=g)) == pytest.approx(force_N(po.P_star, C10, R),
+                                                               rel=1e-12)
+    # adhesion pulls harder the larger gamma, and the pull-off is tensile
+    assert ds.P_star.sel(gamma=30) < ds.P_star.sel(gamma=20) < 0
+
+
+def test_json_matches_dataset(solved):
+    data = json.loads(solved.to_json())
+    ds = solved.to_dataset()
+    assert data["input"] == dict(BASE, delta_max_mm=2.0, gamma_J_m2=[30.0, 20.0],
+                                 interface="no_slip", mesh="coarse")
+    for po in data["pull_off"]:
+        g = po["gamma_J_m2"]
+        assert po["fixed_load"]["P_N"] == pytest.approx(float(ds.P_star.sel(gamma=g)), rel=1e-9)
+        assert po["fixed_grips"]["a_mm"] == pytest.approx(float(ds.a_dagger.sel(gamma=g)),
+                                                          rel=1e-9)
+    assert len(data["relaxation"]) == ds.sizes["relaxation"]
+    assert data["loading"]["P_N"] == pytest.approx(list(ds.loading_P.values), rel=1e-9)
+
+
+def test_cli_prints_exactly_to_json(solved, monkeypatch, capsys):
+    calls = []
+
+    def fake(*args, **kwargs):
+        calls.append((args, kwargs))
+        return solved
+    monkeypatch.setattr(case_module, "solve_case", fake)
+    code = main(["case", "--R", "20", "--t", "3", "--h", "20", "--C10", "0.3", "--gamma", "30",
+                 "--gamma", "20", "--delta-max", "2", "--mesh", "coarse", "--json"])
+    assert code == 0 and len(calls) == 1
+    assert calls[0][0] == (20.0, 3.0, 20.0, 0.3, (30.0, 20.0))
+    assert capsys.readouterr().out == solved.to_json() + "\n"
+
+
+FOREIGN = """\
+import sys
+import catalogue
+assert catalogue.__file__.startswith(sys.argv[1]) and not hasattr(catalogue, "Catalogue")
+import shell_adhesion
+from shell_adhesion.catalogue import Catalogue
+import shell_adhesion.study.run
+print("ok", shell_adhesion.__version__)
+"""
+
+
+def test_foreign_catalogue_package_first_on_sys_path(tmp_path):
+    foreign = tmp_path / "foreign"
+    (foreign / "catalogue").mkdir(parents=True)
+    (foreign / "catalogue" / "__init__.py").write_text('"""Not the shell-adhesion one."""\n')
+    env = dict(ENV, PYTHONPATH=f"{foreign}:{ENV['PYTHONPATH']}")
+    env.pop("SHELL_ADHESION_CATALOGUE", None)
+    out = subprocess.run([sys.executable, "-c", FOREIGN, str(foreign)], env=env, cwd=foreign,
+                         capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0 and out.stdout.startswith("ok"), out.stderr
+    # -m runs with the working folder first on sys.path: there the foreign package sits
+    def run(*argv):
+        return subprocess.run([sys.executable, "-m", "shell_adhesion", *argv], env=env,
+                              cwd=foreign, capture_output=True, text=True, timeout=300)
+    case = run("case", "--R", "20", "--t", "3", "--h", "20", "--C10", "0.3", "--mesh", "coarse",
+               "--delta-max", "0.5", "--json")
+    assert case.returncode == 0, case.stderr
+    assert json.loads(case.stdout)["loading"]["delta_mm"][-1] == pytest.approx(0.5)
+    listed = run("catalogue", "list")
+    assert listed.returncode == 0 and listed.stdout.startswith("fingerprint"), listed.stderr

@@ -230,7 +230,8 @@ def test_lost_scheduler_one_line_then_resume(reference, dask_cluster, tmp_path):
     local cluster) keeps what finished and equals an uninterrupted run."""
     address, procs = dask_cluster(1)
     cat, out = tmp_path / "cat", tmp_path / "results"
-    proc = cli(study_file(tmp_path), "--out", out, "--catalogue", cat, "--scheduler", address)
+    proc = cli(study_file(tmp_path), "--out", out, "--catalogue", cat, "--scheduler", address,
+               "--quiet")
     try:
         wait_for_parts(cat, proc, 1)
         kill_group(procs[0])                # the scheduler

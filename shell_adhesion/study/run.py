@@ -412,18 +412,37 @@ def execute(study, out=None, catalogue=None, scheduler=None, progress=True, work
     out_dir = check_out(out if out is not None else DEFAULT_OUT)
     _writable_folder("catalogue", catalogue if catalogue is not None else default_dir())
     output = out_dir / f"{study.name}.nc"
-    client = None
-    if scheduler and _held_by_index(plan, catalogue) < len(plan.shells):
-        client = _connect_external(scheduler)       # before anything is created
+    with _quiet_dask():
+        client = None
+        if scheduler and _held_by_index(plan, catalogue) < len(plan.shells):
+            client = _connect_external(scheduler)       # before anything is created
+        try:
+            return _execute(plan, out_dir, output, catalogue, scheduler, client, progress,
+                            workers, t0)
+        finally:
+            if client is not None:
+                try:
+                    client.close(timeout=5)
+                except Exception:       # a lost scheduler cannot be told goodbye
+                    pass
+
+
+@contextmanager
+def _quiet_dask():
+    """dask.distributed's own log lines (its tracebacks of a lost connection) are not
+    shown: the run reports what happened in one line."""
+    import distributed  # noqa: F401  (its import configures its loggers)
+    names = ["distributed"] + [n for n in logging.root.manager.loggerDict
+                               if n.startswith("distributed.")]
+    loggers = [logging.getLogger(n) for n in names]
+    levels = [lg.level for lg in loggers]
+    for lg in loggers:
+        lg.setLevel(logging.CRITICAL + 1)
     try:
-        return _execute(plan, out_dir, output, catalogue, scheduler, client, progress,
-                        workers, t0)
+        yield
     finally:
-        if client is not None:
-            try:
-                client.close(timeout=5)
-            except Exception:       # a lost scheduler cannot be told goodbye
-                pass
+        for lg, level in zip(loggers, levels):
+            lg.setLevel(level)
 
 
 def _execute(plan, out_dir, output, catalogue, scheduler, client, show, workers, t0):

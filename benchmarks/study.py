@@ -23,7 +23,7 @@ HERE = Path(__file__).resolve().parent
 # this script shares its name with the `study` package: import the package, not itself
 sys.path[:] = [p for p in sys.path if Path(p or ".").resolve() != HERE]
 from shell_adhesion.study.products import write_products  # noqa: E402
-from shell_adhesion.study.run import run  # noqa: E402
+from shell_adhesion.study.run import execute  # noqa: E402
 
 REPO = HERE.parent
 GRID = dict(
@@ -38,10 +38,10 @@ def bench(doc: dict, tmp: Path, args):
     path = tmp / f"{doc['name']}.yaml"
     path.write_text(yaml.safe_dump(doc, sort_keys=False))
     cat = tmp / f"catalogue-{doc['name']}"
-    kw = dict(catalogue_dir=cat, scheduler=args.scheduler, n_workers=args.workers,
+    kw = dict(catalogue=cat, scheduler=args.scheduler, workers=args.workers,
               progress=not args.quiet)
-    cold = run(path, tmp / "results-cold", **kw)
-    warm = run(path, tmp / "results-warm", **kw)
+    cold = execute(path, tmp / "results-cold", **kw)
+    warm = execute(path, tmp / "results-warm", **kw)
     return cold, warm
 
 

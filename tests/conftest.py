@@ -57,10 +57,10 @@ delta_max_over_R: 0.1
 @pytest.fixture(scope="session")
 def small_study(tmp_path_factory):
     """Path of the small study's results netCDF (computed once per session)."""
-    from shell_adhesion.study.run import run
+    from shell_adhesion.study.run import execute
     d = tmp_path_factory.mktemp("small")
     (d / "small.yaml").write_text(SMALL_STUDY)
-    outcome = run(d / "small.yaml", d / "results", catalogue_dir=d / "cat", progress=False)
+    outcome = execute(d / "small.yaml", d / "results", catalogue=d / "cat", progress=False)
     assert outcome.exit_code == 0, outcome.failed
     return outcome.output
 

@@ -9,8 +9,10 @@ import sqlite3
 import numpy as np
 import pytest
 
-from shell_adhesion.catalogue import Catalogue, format_entries, list_entries, pathset_key
+from shell_adhesion.catalogue import Catalogue, format_entries, list_entries
 from shell_adhesion.solver.case import PathSet, Relaxation, solve_paths
+from shell_adhesion.solver.pathset_dataset import from_dataset, to_dataset
+from shell_adhesion.study.keys import pathset_key
 
 SHELL = (0.15, 1.0, "no_slip", "coarse", 0.1, 0.01)
 
@@ -18,6 +20,15 @@ SHELL = (0.15, 1.0, "no_slip", "coarse", 0.1, 0.01)
 @functools.lru_cache(maxsize=None)
 def pathset():
     return solve_paths(*SHELL)[0]
+
+
+def store(cat, key, ps, timings=None, study=""):
+    return cat.store(key, to_dataset(ps), {"relaxations": len(ps.relaxations)}, timings, study)
+
+
+def fetch(cat, key):
+    hit = cat.fetch(key)
+    return None if hit is None else (hit[0], from_dataset(hit[1]))
 
 
 def key(**change):
@@ -48,8 +59,8 @@ def assert_same_pathset(a: PathSet, b: PathSet):
 def test_store_and_fetch_round_trip(tmp_path):
     ps = pathset()
     with Catalogue(tmp_path / "cat") as cat:
-        entry = cat.store(key(), ps, {"wall_s": 1.0}, study="t")
-        hit = cat.fetch(key())
+        entry = store(cat, key(), ps, {"wall_s": 1.0}, study="t")
+        hit = fetch(cat, key())
     assert hit is not None and hit[0].fingerprint == entry.fingerprint
     assert_same_pathset(ps, hit[1])
     g = 0.005
@@ -63,21 +74,21 @@ def test_store_and_fetch_round_trip(tmp_path):
 
 def test_a_set_reaching_further_serves(tmp_path):
     with Catalogue(tmp_path) as cat:
-        stored = cat.store(key(), pathset())
-        assert cat.fetch(key(gamma_max_hat=0.005))[0].fingerprint == stored.fingerprint
-        assert cat.fetch(key(delta_max_over_R=0.05))[0].fingerprint == stored.fingerprint
-        assert cat.fetch(key(gamma_max_hat=0.02)) is None
-        assert cat.fetch(key(delta_max_over_R=0.2)) is None
-        assert cat.fetch(key(interface="frictionless")) is None
-        assert cat.fetch(key(h_over_R=0.9)) is None
-        exact = cat.store(key(gamma_max_hat=0.005), pathset())
-        assert cat.fetch(key(gamma_max_hat=0.005))[0].fingerprint == exact.fingerprint
+        stored = store(cat, key(), pathset())
+        assert fetch(cat, key(gamma_max_hat=0.005))[0].fingerprint == stored.fingerprint
+        assert fetch(cat, key(delta_max_over_R=0.05))[0].fingerprint == stored.fingerprint
+        assert fetch(cat, key(gamma_max_hat=0.02)) is None
+        assert fetch(cat, key(delta_max_over_R=0.2)) is None
+        assert fetch(cat, key(interface="frictionless")) is None
+        assert fetch(cat, key(h_over_R=0.9)) is None
+        exact = store(cat, key(gamma_max_hat=0.005), pathset())
+        assert fetch(cat, key(gamma_max_hat=0.005))[0].fingerprint == exact.fingerprint
 
 
 @pytest.mark.parametrize("damage", ["truncate", "flip", "delete", "garbage"])
 def test_damaged_file_is_not_trusted(tmp_path, damage):
     with Catalogue(tmp_path) as cat:
-        entry = cat.store(key(), pathset())
+        entry = store(cat, key(), pathset())
         data = entry.file.read_bytes()
         if damage == "truncate":
             entry.file.write_bytes(data[: len(data) // 2])
@@ -88,28 +99,28 @@ def test_damaged_file_is_not_trusted(tmp_path, damage):
             entry.file.unlink()
         else:
             entry.file.write_bytes(b"not a netCDF file")
-        assert cat.fetch(key()) is None
+        assert fetch(cat, key()) is None
         assert len(cat.discarded) == 1
         assert list_entries(tmp_path) == []          # the untrusted row is gone
-        cat.store(key(), pathset())                  # and a recomputed set replaces it
-        assert_same_pathset(cat.fetch(key())[1], pathset())
+        store(cat, key(), pathset())                  # and a recomputed set replaces it
+        assert_same_pathset(fetch(cat, key())[1], pathset())
 
 
 def test_file_without_row_is_not_trusted(tmp_path):
     """A writer killed between the file and the index row leaves nothing a rerun trusts."""
     with Catalogue(tmp_path / "a") as a:
-        entry = a.store(key(), pathset())
+        entry = store(a, key(), pathset())
     with Catalogue(tmp_path / "b") as b:
         (b.files / entry.file.name).write_bytes(entry.file.read_bytes())
-        assert b.fetch(key()) is None
+        assert fetch(b, key()) is None
 
 
 def test_failure_never_replaces_a_good_entry(tmp_path):
     with Catalogue(tmp_path) as cat:
         cat.record_failure(key(), "loading: ConvergenceError: test")
         assert [r["status"] for r in cat.entries()] == ["failed"]
-        assert cat.fetch(key()) is None
-        cat.store(key(), pathset())
+        assert fetch(cat, key()) is None
+        store(cat, key(), pathset())
         cat.record_failure(key(), "later failure")
         assert [r["status"] for r in cat.entries()] == ["ok"]
 
@@ -129,7 +140,7 @@ def test_index_is_wal(tmp_path):
 def _store_many(directory, ps, t_values):
     with Catalogue(directory) as cat:
         for t in t_values:
-            cat.store(key(t_over_R=t), ps, study=f"writer {t_values[0]}")
+            store(cat, key(t_over_R=t), ps, study=f"writer {t_values[0]}")
     return len(t_values)
 
 
@@ -143,7 +154,60 @@ def test_concurrent_writers(tmp_path):
     assert len(rows) == 7 and all(r["status"] == "ok" for r in rows)
     with Catalogue(tmp_path) as cat:
         for t in sorted({t for group in ts for t in group}):
-            hit = cat.fetch(key(t_over_R=t))
+            hit = fetch(cat, key(t_over_R=t))
             assert hit is not None
             assert_same_pathset(hit[1], ps)
         assert cat.discarded == []
+
+
+def test_parts_are_kept_until_the_set_is_stored(tmp_path):
+    """A finished relaxation path is kept as a part of its set; storing the set drops it."""
+    from shell_adhesion.solver.pathset_dataset import (relaxation_from_dataset,
+                                                       relaxation_to_dataset)
+    ps = pathset()
+    r = ps.relaxations[0]
+    with Catalogue(tmp_path) as cat:
+        cat.store_part(key(), "p0", relaxation_to_dataset(r, 1.5), 1.5)
+        assert cat.count_parts(key()) == 1 and cat.parts(key(gamma_max_hat=0.02)) == {}
+        back, seconds = relaxation_from_dataset(cat.parts(key())["p0"])
+        assert seconds == 1.5 and back.a == r.a
+        np.testing.assert_array_equal(back.P, r.P)
+        store(cat, key(), ps)
+        assert cat.parts(key()) == {} and not list((tmp_path / "parts").rglob("*.nc"))
+
+
+def test_catalogue_imports_nothing_from_the_solver(tmp_path):
+    """catalogue stores Datasets under a fingerprint; a subprocess in which importing
+    shell_adhesion.solver fails stores and reads one (the package's own __init__, which
+    exports the solver's API, is not run)."""
+    import subprocess
+    import sys
+    from conftest import ENV, REPO
+    code = f"""
+import sys
+class Block:
+    def find_spec(self, name, path=None, target=None):
+        if name == "shell_adhesion.solver" or name.startswith("shell_adhesion.solver."):
+            raise ImportError("blocked: " + name)
+sys.meta_path.insert(0, Block())
+import types                # the package without its __init__ (which exports the API)
+pkg = types.ModuleType("shell_adhesion")
+pkg.__path__ = [{str(REPO / "shell_adhesion")!r}]
+sys.modules["shell_adhesion"] = pkg
+import xarray as xr, numpy as np
+from shell_adhesion.catalogue import Catalogue, list_entries
+key = dict(t_over_R=0.1, h_over_R=1.0, interface="no_slip", mesh="coarse",
+           delta_max_over_R=0.1, gamma_max_hat=0.01)
+ds = xr.Dataset({{"x": ("n", np.arange(3.0))}})
+with Catalogue({str(tmp_path)!r}) as cat:
+    cat.store(key, ds, {{"relaxations": 0}})
+    entry, back = cat.fetch(key)
+    cat.store_part(key, "p", ds)
+assert back["x"].values.tolist() == [0.0, 1.0, 2.0]
+assert not [m for m in sys.modules if m.startswith("shell_adhesion.solver")]
+print(len(list_entries({str(tmp_path)!r})))
+"""
+    out = subprocess.run([sys.executable, "-c", code], cwd=REPO, env=ENV, capture_output=True,
+                         text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip() == "1"

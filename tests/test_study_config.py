@@ -6,7 +6,7 @@ import pytest
 from shell_adhesion.solver.geometry import InputError, check_cap
 from shell_adhesion.study.config import MAX_BYTES, StudyError, load_study
 from shell_adhesion.study.plan import make_plan
-from shell_adhesion.study.run import run_study
+from shell_adhesion.study.cli import main
 
 REPO = Path(__file__).resolve().parents[1]
 
@@ -94,7 +94,7 @@ def test_bad_study_exit_2_one_line_nothing_written(tmp_path, capsys, text, expec
     path = tmp_path / "study.yaml"
     path.write_text(text)
     out, cat = tmp_path / "results", tmp_path / "catalogue"
-    code = run_study(path, out, catalogue_dir=cat, progress=False)
+    code = main(["run", str(path), "--out", str(out), "--catalogue", str(cat), "--quiet"])
     err = capsys.readouterr().err
     assert code == 2
     assert expected in err
@@ -104,7 +104,8 @@ def test_bad_study_exit_2_one_line_nothing_written(tmp_path, capsys, text, expec
 
 
 def test_missing_file(tmp_path, capsys):
-    assert run_study(tmp_path / "nope.yaml", tmp_path / "out", catalogue_dir=tmp_path / "c") == 2
+    assert main(["run", str(tmp_path / "nope.yaml"), "--out", str(tmp_path / "out"),
+                 "--catalogue", str(tmp_path / "c")]) == 2
     assert "cannot read the study file" in capsys.readouterr().err
     assert not (tmp_path / "out").exists()
 

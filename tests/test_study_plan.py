@@ -1,7 +1,8 @@
 """The plan: a study reduces to its distinct FE path sets (DESIGN.md section 3)."""
 import pytest
 
-from shell_adhesion.catalogue import canonical_json, family, fingerprint, pathset_key
+from shell_adhesion.catalogue import canonical_json, family, fingerprint
+from shell_adhesion.study.keys import pathset_key
 from shell_adhesion.study.config import validate
 from shell_adhesion.study.plan import gamma_max_bucket, make_plan
 

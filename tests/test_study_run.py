@@ -16,7 +16,7 @@ from shell_adhesion.catalogue import Catalogue, list_entries
 from shell_adhesion.solver.path import Settings
 from shell_adhesion.study import dataset
 from shell_adhesion.study.plan import restrict
-from shell_adhesion.study.run import run, run_study, summary
+from shell_adhesion.study.run import execute, summary
 
 from conftest import ENV
 
@@ -57,7 +57,7 @@ def local(tmp_path_factory):
     """The tiny study, cold, on the default local cluster."""
     d = tmp_path_factory.mktemp("local")
     study = write(d / "tiny.yaml", TINY)
-    outcome = run(study, d / "results", catalogue_dir=d / "cat", progress=False)
+    outcome = execute(study, d / "results", catalogue=d / "cat", progress=False)
     return outcome, study, d / "cat", load(outcome.output)
 
 
@@ -119,7 +119,7 @@ def test_local_cluster_solves_once(local):
 
 def test_external_scheduler_same_numbers(local, scheduler, tmp_path):
     outcome, study, _, ds = local
-    other = run(study, tmp_path / "results", scheduler=scheduler, catalogue_dir=tmp_path / "cat",
+    other = execute(study, tmp_path / "results", scheduler=scheduler, catalogue=tmp_path / "cat",
                 progress=False)
     assert other.exit_code == 0 and other.computed == outcome.computed
     same_results(load(other.output), ds)
@@ -127,7 +127,7 @@ def test_external_scheduler_same_numbers(local, scheduler, tmp_path):
 
 def test_rerun_reads_everything_from_the_catalogue(local, tmp_path):
     outcome, study, cat, ds = local
-    again = run(study, tmp_path / "results", scheduler=UNREACHABLE, catalogue_dir=cat,
+    again = execute(study, tmp_path / "results", scheduler=UNREACHABLE, catalogue=cat,
                 progress=False)
     assert again.exit_code == 0
     assert again.computed == [] and again.reused == outcome.computed
@@ -138,7 +138,7 @@ def test_new_c10_and_gamma_compute_nothing(local, tmp_path):
     _, _, cat, ds = local
     study = write(tmp_path / "more.yaml", TINY.replace("[0.2, 0.25, 0.3]", "[0.2, 0.22, 0.25, 0.3]")
                   .replace("[20, 25, 30]", "[20, 25, 27, 30]"))
-    more = run(study, tmp_path / "results", scheduler=UNREACHABLE, catalogue_dir=cat,
+    more = execute(study, tmp_path / "results", scheduler=UNREACHABLE, catalogue=cat,
                progress=False)
     assert more.exit_code == 0 and more.computed == [] and len(more.reused) == 1
     assert more.counts["ok"] == 16
@@ -166,7 +166,7 @@ def test_sweeps_leave_unrequested_points_empty(local, tmp_path):
         "grid:\n  C10_MPa: [0.2, 0.25, 0.3]\n  gamma_J_m2: [20, 25, 30]",
         "sweeps:\n  C10_MPa: [0.2, 0.3]\n  gamma_J_m2: [20, 30]"
     ).replace("name: tiny", "name: sweep"))
-    out = run(study, tmp_path / "results", scheduler=UNREACHABLE, catalogue_dir=cat,
+    out = execute(study, tmp_path / "results", scheduler=UNREACHABLE, catalogue=cat,
               progress=False)
     ds = load(out.output)
     assert out.computed == [] and out.counts["ok"] == 3 and out.counts["not requested"] == 1
@@ -179,10 +179,10 @@ def test_point_outside_the_paths_is_recorded(local, tmp_path, capsys):
     """C10 = 1000 MPa gives gamma / (C10 R) = 1e-6: a* is below the first relaxation paths."""
     _, _, cat, _ = local
     study = write(tmp_path / "stiff.yaml", TINY.replace("[0.2, 0.25, 0.3]", "[0.2, 1000.0]"))
-    code = run_study(study, tmp_path / "results", scheduler=UNREACHABLE, catalogue_dir=cat,
-                     progress=False)
-    assert code == 1
-    text = capsys.readouterr().out
+    outcome = execute(study, tmp_path / "results", scheduler=UNREACHABLE, catalogue=cat,
+                      progress=False)
+    assert outcome.exit_code == 1
+    text = summary(outcome, outcome.dataset)
     assert "FE path sets: 1 needed, 0 computed, 1 reused, 0 failed" in text
     assert "3 out of range" in text
     ds = load(tmp_path / "results" / "tiny.nc")
@@ -195,7 +195,7 @@ def test_point_outside_the_paths_is_recorded(local, tmp_path, capsys):
 def test_solver_failure_is_recorded(scheduler, tmp_path):
     """Newton limited to one iteration cannot converge: the shell fails, the run goes on."""
     study = write(tmp_path / "fail.yaml", TINY)
-    out = run(study, tmp_path / "results", scheduler=scheduler, catalogue_dir=tmp_path / "cat",
+    out = execute(study, tmp_path / "results", scheduler=scheduler, catalogue=tmp_path / "cat",
               progress=False, settings=Settings(max_iter=1))
     assert out.exit_code == 1 and len(out.failed) == 1
     assert "ConvergenceError" in next(iter(out.failed.values()))
@@ -238,7 +238,7 @@ def test_outputs_can_leave_out_the_curves(local, tmp_path):
     _, _, cat, ds = local
     study = write(tmp_path / "lean.yaml", TINY + "outputs:\n  equilibrium_curves: false\n"
                   "  loading_curves: false\n")
-    lean = load(run(study, tmp_path / "results", scheduler=UNREACHABLE, catalogue_dir=cat,
+    lean = load(execute(study, tmp_path / "results", scheduler=UNREACHABLE, catalogue=cat,
                     progress=False).output)
     assert "point" not in lean.dims and "loading_state" not in lean.dims
     assert "a_eq" not in lean and "loading_P" not in lean

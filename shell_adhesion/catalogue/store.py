@@ -1,14 +1,21 @@
-"""The catalogue folder: stored path sets and their SQLite index.
+"""The catalogue folder: stored Datasets (FE path sets) and their SQLite index.
 
-    <dir>/index.sqlite                the index (WAL journal): one row per path set, one per run
-    <dir>/pathsets/<fingerprint>.nc   one file per path set (layout: catalogue.pathfile)
+    <dir>/index.sqlite                the index (WAL journal): one row per path set, one per
+                                      stored part, one per run
+    <dir>/pathsets/<fingerprint>.nc   one file per path set (catalogue.files)
+    <dir>/parts/<fingerprint>/<part>.nc   finished pieces (relaxation paths) of a set not
+                                      yet complete, kept so a killed run loses none of them
+
+The catalogue stores xarray Datasets under the fingerprint of a key made by the caller
+(study.keys) and reads the index columns from the key and the caller's summary; it knows
+nothing of the solver.
 
 The folder is `--catalogue DIR`, else $SHELL_ADHESION_CATALOGUE, else ./catalogue-data in
 the directory the command runs in.
 
 Trust rule: a path set is used only if its row says 'ok' and the file's sha256 matches the
 row; anything else (missing, truncated, altered file) is dropped and recomputed.  A path
-set is stored file first (atomically), row second, both under the index's write lock, so a
+set (or part) is stored file first (atomically), row second, both under the index's write lock, so a
 process killed at any moment leaves either nothing, an orphan file no row trusts, or a
 complete entry; two studies sharing a folder serialise their writes.
 """
@@ -22,9 +29,10 @@ import socket
 import sqlite3
 import time
 
-from shell_adhesion.solver.case import PathSet
+import xarray as xr
 
-from . import pathfile
+from . import files
+from .atomic import clean_temporaries
 from .fingerprint import canonical_json, family, fingerprint
 
 ENV_VAR = "SHELL_ADHESION_CATALOGUE"
@@ -63,6 +71,16 @@ CREATE TABLE IF NOT EXISTS pathsets (
     created TEXT NOT NULL
 );
 CREATE INDEX IF NOT EXISTS pathsets_family ON pathsets (family, status);
+CREATE TABLE IF NOT EXISTS parts (
+    owner TEXT NOT NULL,
+    part TEXT NOT NULL,
+    file TEXT NOT NULL,
+    sha256 TEXT NOT NULL,
+    bytes INTEGER,
+    seconds REAL,
+    created TEXT NOT NULL,
+    PRIMARY KEY (owner, part)
+);
 CREATE TABLE IF NOT EXISTS runs (
     id INTEGER PRIMARY KEY AUTOINCREMENT,
     study TEXT,
@@ -116,6 +134,7 @@ class Catalogue:
     def __init__(self, directory=None, create: bool = True):
         self.dir = Path(directory) if directory is not None else default_dir()
         self.files = self.dir / "pathsets"
+        self.parts_dir = self.dir / "parts"
         index = self.dir / INDEX
         if not create and not index.exists():
             raise FileNotFoundError(f"no catalogue at {self.dir}")
@@ -131,7 +150,7 @@ class Catalogue:
                 for statement in _SCHEMA.split(";"):
                     if statement.strip():
                         self.db.execute(statement)
-            self._clean_temporaries()
+            clean_temporaries(self.dir)
         self.discarded = []         # reasons of entries found untrustworthy and dropped
 
     def close(self):
@@ -154,15 +173,6 @@ class Catalogue:
             raise
         self.db.execute("COMMIT")
 
-    def _clean_temporaries(self, age_s: float = 3600.0):
-        """Remove temporary files left by killed writers (older than an hour)."""
-        for p in self.files.glob("*.tmp*"):
-            try:
-                if time.time() - p.stat().st_mtime > age_s:
-                    p.unlink()
-            except OSError:
-                pass
-
     # -- path sets ---------------------------------------------------------------------
 
     def candidates(self, key: dict) -> list:
@@ -178,7 +188,7 @@ class Catalogue:
         return sorted(rows, key=lambda r: r["fingerprint"] != exact)
 
     def fetch(self, key: dict):
-        """(Entry, PathSet) of the nearest trusted stored set serving `key`, or None.
+        """(Entry, Dataset) of the nearest trusted stored set serving `key`, or None.
 
         Entries whose file fails its checksum or cannot be decoded are removed from the
         index (recorded in self.discarded) so the set is recomputed.
@@ -186,10 +196,10 @@ class Catalogue:
         for row in self.candidates(key):
             for _ in range(3):      # the row may be replaced while we read
                 try:
-                    ps = pathfile.read(self.dir / row["file"], row["sha256"], row["fingerprint"])
+                    ds = files.read(self.dir / row["file"], row["sha256"], row["fingerprint"])
                     return Entry(row["fingerprint"], row["delta_max_over_R"],
-                                 row["gamma_max_hat"], self.dir / row["file"], row["sha256"]), ps
-                except pathfile.CorruptFile as e:
+                                 row["gamma_max_hat"], self.dir / row["file"], row["sha256"]), ds
+                except files.CorruptFile as e:
                     fresh = self.db.execute(
                         "SELECT * FROM pathsets WHERE fingerprint = ?", (row["fingerprint"],)
                     ).fetchone()
@@ -204,25 +214,93 @@ class Catalogue:
                     break
         return None
 
-    def store(self, key: dict, ps: PathSet, timings: dict = None, study: str = "") -> Entry:
-        """Store a computed path set (file, then index row) and return its entry."""
+    def store(self, key: dict, ds: xr.Dataset, summary: dict = None, timings: dict = None,
+              study: str = "") -> Entry:
+        """Store a computed Dataset under `key` (file, then index row) and return its entry;
+        its stored parts are then dropped.
+
+        `summary`: index columns known to the caller (relaxations, loading_states,
+        newton_iterations, loading_s, relaxation_s [s], and `stats`, any JSON-able dict);
+        `timings`: {"wall_s": seconds from submission to completion}.
+        """
         fp = fingerprint(key)
         rel = f"pathsets/{fp}.nc"
+        summary = dict(summary or {})
         timings = timings or {}
-        stats = ps.stats
         with self._write():
-            sha, size = pathfile.write(self.dir / rel, ps, key, fp)
+            sha, size = files.write(self.dir / rel, ds, fp, canonical_json(key))
             self._upsert(dict(
                 fingerprint=fp, family=family(key), status="ok", file=rel, sha256=sha,
-                bytes=size, relaxations=len(ps.relaxations),
-                loading_states=len(ps.loading_delta),
-                newton_iterations=int(stats.get("loading_newton_iterations", 0))
-                + int(stats.get("relaxation_newton_iterations", 0)),
-                loading_s=stats.get("loading_s"), relaxation_s=stats.get("relaxation_s"),
+                bytes=size, relaxations=summary.get("relaxations"),
+                loading_states=summary.get("loading_states"),
+                newton_iterations=summary.get("newton_iterations"),
+                loading_s=summary.get("loading_s"), relaxation_s=summary.get("relaxation_s"),
                 wall_s=timings.get("wall_s"), reason=None,
-                stats=json.dumps(stats, sort_keys=True, default=lambda o: o.item()),
+                stats=json.dumps(summary.get("stats", {}), sort_keys=True,
+                                 default=lambda o: o.item()),
                 **self._common(key, study)))
+        self.drop_parts(key)
         return Entry(fp, key["delta_max_over_R"], key["gamma_max_hat"], self.dir / rel, sha)
+
+    # -- parts of a set not yet complete -----------------------------------------------
+
+    def store_part(self, key: dict, part: str, ds: xr.Dataset, seconds: float = None):
+        """Keep one finished piece `part` (a fingerprint-like name) of the set `key`."""
+        owner = fingerprint(key)
+        rel = f"parts/{owner}/{part}.nc"
+        (self.dir / rel).parent.mkdir(parents=True, exist_ok=True)
+        with self._write():
+            sha, size = files.write(self.dir / rel, ds, part, canonical_json(key))
+            self.db.execute(
+                "INSERT OR REPLACE INTO parts (owner, part, file, sha256, bytes, seconds, "
+                "created) VALUES (?, ?, ?, ?, ?, ?, ?)",
+                (owner, part, rel, sha, size, seconds, now()))
+
+    def parts(self, key: dict) -> dict:
+        """The trusted stored parts of the set `key`: part -> Dataset (damaged ones are
+        dropped and recorded in self.discarded)."""
+        owner = fingerprint(key)
+        rows = self.db.execute("SELECT * FROM parts WHERE owner = ? ORDER BY part",
+                               (owner,)).fetchall()
+        found = {}
+        for row in rows:
+            try:
+                found[row["part"]] = files.read(self.dir / row["file"], row["sha256"],
+                                                row["part"])
+            except files.CorruptFile as e:
+                with self._write():
+                    self.db.execute("DELETE FROM parts WHERE owner = ? AND part = ? "
+                                    "AND sha256 = ?", (owner, row["part"], row["sha256"]))
+                self.discarded.append(str(e))
+        return found
+
+    def count_parts(self, key: dict) -> int:
+        """How many parts of the set `key` the index holds (not read)."""
+        return self.db.execute("SELECT COUNT(*) FROM parts WHERE owner = ?",
+                               (fingerprint(key),)).fetchone()[0]
+
+    def drop_parts(self, key: dict):
+        """Forget the parts of the set `key` (rows, then files)."""
+        owner = fingerprint(key)
+        with self._write():
+            self.db.execute("DELETE FROM parts WHERE owner = ?", (owner,))
+        folder = self.parts_dir / owner
+        if folder.is_dir():
+            for p in folder.iterdir():
+                p.unlink(missing_ok=True)
+            try:
+                folder.rmdir()
+            except OSError:
+                pass
+
+    def timings(self, interface: str, mesh: str) -> list:
+        """Recorded seconds of the stored sets of this interface and mesh: dicts with
+        relaxations, loading_s, relaxation_s, wall_s, delta_max_over_R."""
+        rows = self.db.execute(
+            "SELECT relaxations, loading_s, relaxation_s, wall_s, delta_max_over_R "
+            "FROM pathsets WHERE status = 'ok' AND interface = ? AND mesh = ? "
+            "AND loading_s IS NOT NULL", (interface, mesh)).fetchall()
+        return [dict(r) for r in rows]
 
     def record_failure(self, key: dict, reason: str, timings: dict = None, study: str = ""):
         """Record that computing `key` failed (never replaces a stored 'ok' entry)."""

@@ -94,6 +94,45 @@ def _print_case(out):
     print(f"{p['dofs']} dofs, {p['newton_iterations']} Newton iterations, {p['wall_s']:.1f} s")
 
 
+def _workers(text):
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if not 1 <= value <= 4096:
+        raise argparse.ArgumentTypeError(f"{text!r} must be an integer from 1 to 4096")
+    return value
+
+
+def _run_study(ns):
+    """`run`: the study through study.run.run_study (one orchestration for API and CLI)."""
+    from .config import StudyError
+    from .run import Interrupted, RunInputError, SchedulerLost, dry_run, exit_code, run_study
+
+    try:
+        if ns.dry_run:
+            print(dry_run(ns.study, ns.catalogue, ns.workers, ns.scheduler))
+            return 0
+        ds = run_study(ns.study, out=ns.out, catalogue=ns.catalogue, scheduler=ns.scheduler,
+                       progress=not ns.quiet, workers=ns.workers)
+    except RunInputError as e:
+        print(f"shell-adhesion: error: {e.flag}: {e.detail}", file=sys.stderr)
+        return 2
+    except StudyError as e:
+        print(f"shell-adhesion: error: {ns.study}: {e}", file=sys.stderr)
+        return 2
+    except SchedulerLost as e:
+        print(f"shell-adhesion: failed: {e}", file=sys.stderr)
+        return 1
+    except Interrupted as e:
+        print(f"shell-adhesion: {e}", file=sys.stderr)
+        return 130
+    except KeyboardInterrupt:
+        print("shell-adhesion: interrupted before any FE work started", file=sys.stderr)
+        return 130
+    return exit_code(ds)
+
+
 def _run_tables(ns):
     from .analysis import open_results
     from shell_adhesion.catalogue.atomic import write_text_atomic
@@ -187,8 +226,19 @@ def _parser():
     run = sub.add_parser("run", help="run a study YAML on dask; write netCDF, tables and figures")
     run.add_argument("study", help="study file (YAML)")
     run.add_argument("--out", default="results", help="output folder (default results/)")
-    run.add_argument("--scheduler", default=None, help="address of a dask.distributed scheduler")
-    run.add_argument("--catalogue", default=None, help="catalogue folder")
+    run.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                     help="address or scheduler file of a running dask.distributed scheduler "
+                          "(default: a local cluster of processes, one per core)")
+    run.add_argument("--catalogue", default=None, metavar="DIR",
+                     help="catalogue folder (default: $SHELL_ADHESION_CATALOGUE or "
+                          "./catalogue-data)")
+    run.add_argument("--workers", type=_workers, default=None, metavar="N",
+                     help="local cluster size (default: one per core)")
+    run.add_argument("--quiet", action="store_true",
+                     help="no progress lines and no summary (errors only)")
+    run.add_argument("--dry-run", action="store_true",
+                     help="print the plan (FE problems, how many the catalogue holds, a time "
+                          "estimate) and compute nothing")
     cat = sub.add_parser("catalogue", help="list the catalogue of solved path sets, or rebuild "
                                            "its index from the stored files")
     cat.add_argument("action", choices=("list", "rebuild"))
@@ -269,8 +319,7 @@ def main(argv=None):
         if ns.command == "case":
             return _run_case(ns)
         if ns.command == "run":
-            from .run import run_study
-            return run_study(ns.study, ns.out, scheduler=ns.scheduler, catalogue_dir=ns.catalogue)
+            return _run_study(ns)
         if ns.command == "tables":
             return _run_tables(ns)
         if ns.command == "plot":

@@ -30,11 +30,12 @@ import xarray as xr
 
 from shell_adhesion import solver
 from shell_adhesion.catalogue import write_atomic
-from shell_adhesion.catalogue.fingerprint import canonical_json, solver_source_sha256
+from shell_adhesion.catalogue.fingerprint import canonical_json
 from shell_adhesion.solver import case
 from shell_adhesion.solver.scaling import energy_mJ, force_N, gamma_hat, length_mm
 from shell_adhesion.solver.theory import eta_of
 
+from .keys import solver_source_sha256
 from .plan import LADDER, Plan
 
 DIMS = ("C10", "t_over_R", "h_over_R", "gamma")

@@ -11,12 +11,13 @@ the requested delta_max, so the results do not depend on what else the catalogue
 from dataclasses import dataclass, replace
 import math
 
-from shell_adhesion.catalogue import fingerprint, pathset_key
+from shell_adhesion.catalogue import fingerprint
 from shell_adhesion.solver.case import PathSet
 from shell_adhesion.solver.path import Settings
 from shell_adhesion.solver.scaling import gamma_hat
 
 from .config import FACTORS, Study, requested
+from .keys import pathset_key
 
 LADDER = (1, 2, 5)
 _REL_TOL = 1e-9

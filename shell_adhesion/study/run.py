@@ -2,40 +2,69 @@
 dask, write the results cube, then its tables and figures (study.products).
 
 The loading of a shell is one task and each of its relaxation paths another; workers only
-compute.  This (client) process stores every finished path set in the catalogue at once,
-so a run killed at any moment loses only unfinished sets, and it alone writes the
-results.  A shell whose paths fail is recorded with its reason and the rest continue.
+compute.  This (client) process stores every finished relaxation path in the catalogue at
+once (a part of its shell's set) and the whole set when its last path arrives, so a run
+killed at any moment loses only the tasks still running; it alone writes the results.  A
+shell whose paths fail is recorded with its reason and the rest continue.
 
-Exit codes: 0 all requested points evaluated, 1 something failed (the dataset's `status`
-says what), 2 the study file is invalid (nothing created).
-
-    python -m shell_adhesion.study.run workflow.yaml --out results [--scheduler ADDRESS] [--catalogue DIR]
+`run_study` is the one entry point (the `shell-adhesion run` command calls it).
 """
-import argparse
+from concurrent.futures import CancelledError
 from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
+import hashlib
+import json
 import logging
 import os
 from pathlib import Path
 import sys
+import tempfile
 import time
 import uuid
 
-from tqdm import tqdm
-
 from shell_adhesion import solver
-from shell_adhesion.catalogue import Catalogue
-from shell_adhesion.catalogue.fingerprint import solver_source_sha256
-from shell_adhesion.solver.case import (loading_views, pathset_of, relaxation_starts, relaxation_task,
-                         solve_loading)
+from shell_adhesion.catalogue import Catalogue, default_dir
+from shell_adhesion.catalogue.store import INDEX
+from shell_adhesion.solver.case import (loading_views, pathset_of, relaxation_starts,
+                                        relaxation_task, solve_loading)
 from shell_adhesion.solver.path import LoadingPath, Settings
+from shell_adhesion.solver.pathset_dataset import (from_dataset, relaxation_from_dataset,
+                                                   relaxation_to_dataset, to_dataset)
 
 from . import dataset
-from .config import StudyError, load_study
+from .config import StudyError, load_study, validate
+from .keys import relaxation_part, solver_source_sha256
 from .plan import Plan, Shell, make_plan, restrict
 from .products import Products, write_products
+from .progress import Progress
 
 DEFAULT_OUT = "results"
+CONNECT_TIMEOUT_S = 10.0    # a scheduler that does not answer in this time is not there
+LOST_AFTER_S = 10.0         # a scheduler unreachable this long is lost
+
+STAGES = ("loading paths", "relaxation paths", "energy method", "cube")
+
+
+class RunInputError(StudyError):
+    """A run argument that cannot work (checked before anything is created).
+
+    `flag` is its command-line name (--out), `detail` the value and the rule.
+    """
+
+    def __init__(self, name: str, detail: str):
+        self.flag, self.detail = f"--{name}", detail
+        super().__init__(f"{name}: {detail}")
+
+
+class SchedulerLost(RuntimeError):
+    """The dask scheduler went away during the run; finished work is in the catalogue."""
+
+
+class Interrupted(KeyboardInterrupt):
+    """Ctrl-C during the run; the message says what finished and is kept."""
+
+    def __str__(self):
+        return self.args[0] if self.args else "interrupted"
 
 
 # -- tasks (run on the workers) ----------------------------------------------------------
@@ -72,7 +101,45 @@ def relax_task(t, h, interface, mesh, start, gamma_max, settings, source_sha256=
     return r, time.perf_counter() - t0
 
 
-# -- the client side ---------------------------------------------------------------------
+# -- checks made before anything is created ----------------------------------------------
+
+def _study_of(study):
+    """A validated Study from a path or a dict of the YAML schema."""
+    if isinstance(study, dict):
+        text = json.dumps(study, sort_keys=True, default=str)
+        return validate(study, source="<dict>", sha256=hashlib.sha256(text.encode()).hexdigest())
+    if isinstance(study, (str, os.PathLike)):
+        return load_study(study)
+    raise StudyError(f"study: a {type(study).__name__} must be a path to a YAML file or a dict")
+
+
+def _writable_folder(name: str, folder) -> Path:
+    """`folder` if it is (or can be made) a writable folder; RunInputError naming the
+    argument `name` otherwise.  Creates nothing that stays."""
+    folder = Path(folder)
+    if folder.exists() and not folder.is_dir():
+        raise RunInputError(name, f"{str(folder)!r} is an existing file; it must be a folder "
+                                  "(existing or new)")
+    probe = folder
+    while not probe.exists() and probe != probe.parent:
+        probe = probe.parent
+    if not probe.is_dir():
+        raise RunInputError(name, f"{str(folder)!r} cannot be made: {str(probe)!r} is a "
+                                  "file, not a folder")
+    try:
+        with tempfile.TemporaryFile(dir=probe):
+            pass
+    except OSError as e:
+        what = "is" if probe == folder else f"would be made in {str(probe)!r}, which is"
+        raise RunInputError(name, f"{str(folder)!r} {what} not writable "
+                                  f"({e.strerror or e}); it must be a writable folder") from None
+    return folder
+
+
+def check_out(out) -> Path:
+    """The output folder (see _writable_folder)."""
+    return _writable_folder("out", out)
+
 
 def _cpu_count() -> int:
     try:
@@ -81,29 +148,34 @@ def _cpu_count() -> int:
         return os.cpu_count() or 1
 
 
-@contextmanager
-def connect(scheduler=None, n_workers=None):
-    """A dask.distributed Client: to `scheduler` (an address, or a scheduler file), else
-    to a new local cluster of processes, one single-threaded worker per core."""
-    from distributed import Client, LocalCluster
-    if scheduler:
+def _connect_external(scheduler):
+    """A Client of the scheduler at `scheduler` (an address or a scheduler file);
+    RunInputError if none answers within CONNECT_TIMEOUT_S."""
+    from distributed import Client
+    try:
         if Path(scheduler).is_file():
-            client = Client(scheduler_file=str(scheduler), timeout="30s")
-        else:
-            client = Client(scheduler, timeout="30s")
-        try:
-            yield client
-        finally:
-            client.close()
-        return
+            return Client(scheduler_file=str(scheduler), timeout=CONNECT_TIMEOUT_S)
+        return Client(scheduler, timeout=CONNECT_TIMEOUT_S)
+    except (OSError, TimeoutError, ValueError, TypeError) as e:
+        why = " ".join(str(e).split())[:120] or type(e).__name__
+        raise RunInputError(
+            "scheduler", f"{scheduler!r}: no dask scheduler answered within "
+                         f"{CONNECT_TIMEOUT_S:g} s ({why}); it must be the address or "
+                         "scheduler file of a running dask scheduler") from None
+
+
+@contextmanager
+def _local_cluster(n_workers=None):
+    """A Client of a new local cluster of processes, one single-threaded worker per core."""
     import dask
+    from distributed import Client, LocalCluster
     # dask's default MALLOC_TRIM_THRESHOLD_=65536 made the solver's many mid-sized array
     # allocations about twice as slow in workers (measured); keep glibc's default
     environ = {k: v for k, v in dask.config.get("distributed.nanny.pre-spawn-environ").items()
                if k != "MALLOC_TRIM_THRESHOLD_"}
     with dask.config.set({"distributed.nanny.pre-spawn-environ": environ}):
         cluster = LocalCluster(n_workers=n_workers or _cpu_count(), threads_per_worker=1,
-                               processes=True, dashboard_address=":0",
+                               processes=True, dashboard_address=":0" if _has_bokeh() else None,
                                silence_logs=logging.CRITICAL)
     try:
         with Client(cluster) as client:
@@ -111,6 +183,16 @@ def connect(scheduler=None, n_workers=None):
     finally:
         cluster.close()
 
+
+def _has_bokeh() -> bool:
+    try:
+        import bokeh  # noqa: F401  (the optional `dashboard` extra)
+    except ImportError:
+        return False
+    return True
+
+
+# -- computing the missing path sets -----------------------------------------------------
 
 @dataclass
 class _Job:
@@ -124,8 +206,18 @@ class _Job:
     relaxations: list = None
     seconds: float = 0.0
     remaining: int = 0
-    futures: list = field(default_factory=list)
     done: bool = False
+
+
+@dataclass
+class Tally:
+    """What the computing part of a run did (kept right if it stops midway)."""
+
+    computed: dict = field(default_factory=dict)    # fingerprint -> PathSet
+    failed: dict = field(default_factory=dict)      # fingerprint -> reason
+    relaxations_computed: int = 0                   # relaxation paths solved and stored
+    relaxations_reused: int = 0                     # relaxation paths read from parts
+    loadings: int = 0                               # loading paths solved
 
 
 def _reason(stage, exc) -> str:
@@ -133,38 +225,56 @@ def _reason(stage, exc) -> str:
     return f"{stage}: {text[:300]}"
 
 
-def compute(plan: Plan, shells, cat: Catalogue, client, computed: dict, failed: dict,
-            progress=True):
-    """Compute the path sets of `shells` on `client`, storing each in `cat` when done.
+def _kept(tally: Tally, cat) -> str:
+    return (f"{len(tally.computed)} path sets and {tally.relaxations_computed} relaxation "
+            f"paths finished and are kept in the catalogue {cat.dir}")
 
-    Fills computed (fingerprint -> PathSet) and failed (fingerprint -> reason) as the sets
-    finish, so both stay right if the connection breaks midway.
-    """
-    from distributed import as_completed
+
+def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: Progress,
+            external: bool = False):
+    """Compute the path sets of `shells` on `client`, storing each relaxation path (a part)
+    and each complete set in `cat` as it arrives.  SchedulerLost if the scheduler of an
+    `external` client stops answering."""
+    from distributed import wait
     st = plan.study
-    owner = {}                  # future key -> (job, relaxation index or None)
-    bar = tqdm(total=len(shells), desc="FE tasks", unit="task", file=sys.stderr,
-               disable=not progress, dynamic_ncols=True)
-    ac = as_completed()
+    owner = {}                  # future -> (job, relaxation index or None)
+    pending = set()
     for s in shells:
-        job = _Job(s, time.perf_counter())
         f = client.submit(loading_task, s.t_over_R, s.h_over_R, st.interface, st.mesh,
                           st.delta_max_over_R, plan.settings, s.key["solver_source"],
                           pure=False,
                           key=f"loading-{s.fingerprint[:12]}-{uuid.uuid4().hex[:8]}")
-        owner[f.key] = (job, None)
-        job.futures.append(f)
-        ac.add(f)
+        owner[f] = (_Job(s, time.perf_counter()), None)
+        pending.add(f)
+    n_shells = len(shells)
+    shells_done = 0
+    progress.start("loading paths")
+    progress.update("relaxation paths", 0, note="0 paths")
+
+    def relax_note():
+        note = f"{tally.relaxations_computed} paths solved"
+        if tally.relaxations_reused:
+            note += f", {tally.relaxations_reused} kept from an earlier run"
+        return note
+
+    def close(job):
+        nonlocal shells_done
+        job.done = True
+        shells_done += 1
+        for g, (j, _) in list(owner.items()):
+            if j is job:
+                g.cancel()
+                owner.pop(g)
+                pending.discard(g)
+        progress.update("relaxation paths", shells_done, note=relax_note())
 
     def fail(job, reason):
-        job.done = True
-        failed[job.shell.fingerprint] = reason
-        client.cancel(job.futures)
+        tally.failed[job.shell.fingerprint] = reason
         cat.record_failure(job.shell.key, reason, {"wall_s": time.perf_counter() - job.t0},
                            study=st.name)
+        close(job)
 
     def finish(job):
-        job.done = True
         s = job.shell
         stats = dict(job.info)
         timer = job.loading.timer
@@ -175,46 +285,88 @@ def compute(plan: Plan, shells, cat: Catalogue, client, computed: dict, failed: 
                      relaxation_s=job.seconds)
         ps = pathset_of(s.t_over_R, s.h_over_R, st.interface, st.mesh, st.delta_max_over_R,
                         s.gamma_max_hat, job.loading, job.relaxations, stats, job.views)
-        cat.store(s.key, ps, {"wall_s": time.perf_counter() - job.t0}, study=st.name)
-        computed[s.fingerprint] = ps
+        summary = dict(relaxations=len(ps.relaxations), loading_states=len(ps.loading_delta),
+                       newton_iterations=stats["loading_newton_iterations"]
+                       + stats["relaxation_newton_iterations"],
+                       loading_s=stats["loading_s"], relaxation_s=stats["relaxation_s"],
+                       stats=stats)
+        cat.store(s.key, to_dataset(ps), summary, {"wall_s": time.perf_counter() - job.t0},
+                  study=st.name)
+        tally.computed[s.fingerprint] = ps
+        close(job)
 
-    try:
-        for f in ac:
-            job, k = owner.pop(f.key)
-            job.futures.remove(f)
-            if job.done or f.status == "cancelled":
-                continue
-            bar.update(1)
-            if f.status == "error":
-                stage = "loading" if k is None else f"relaxation {k + 1} of {len(job.relaxations)}"
-                fail(job, _reason(stage, f.exception()))
-                continue
-            s = job.shell
+    def arrived(f):
+        job, k = owner.pop(f)
+        if job.done:
+            return
+        if f.status == "error":
+            stage = "loading" if k is None else f"relaxation {k + 1} of {len(job.relaxations)}"
             if k is None:
-                job.loading, starts, job.info, job.views = f.result()
-                job.relaxations = [None] * len(starts)
-                job.remaining = len(starts)
-                bar.total += len(starts)
-                bar.refresh()
-                for i, start in enumerate(starts):
-                    g = client.submit(relax_task, s.t_over_R, s.h_over_R, st.interface, st.mesh,
-                                      start, s.gamma_max_hat, plan.settings,
-                                      s.key["solver_source"], i == len(starts) - 1,
-                                      pure=False, key=f"relax-{s.fingerprint[:12]}-{i}-{uuid.uuid4().hex[:8]}")
-                    owner[g.key] = (job, i)
-                    job.futures.append(g)
-                    ac.add(g)
-            else:
-                job.relaxations[k], seconds = f.result()
-                job.seconds += seconds
-                job.remaining -= 1
-            if job.remaining == 0:
-                try:
-                    finish(job)
-                except Exception as e:      # a set that cannot be stored is a failure too
-                    fail(job, _reason("store", e))
-    finally:
-        bar.close()
+                progress.update("loading paths", advance=1)
+            fail(job, _reason(stage, f.exception()))
+            return
+        s = job.shell
+        if k is None:
+            job.loading, starts, job.info, job.views = f.result()
+            tally.loadings += 1
+            progress.update("loading paths", advance=1)
+            held = cat.parts(s.key)
+            job.relaxations = [None] * len(starts)
+            for i, start in enumerate(starts):
+                views = i == len(starts) - 1
+                part = relaxation_part(start, views)
+                if part in held:
+                    try:
+                        job.relaxations[i], seconds = relaxation_from_dataset(held[part])
+                    except (ValueError, KeyError):
+                        pass
+                    else:
+                        job.seconds += seconds
+                        tally.relaxations_reused += 1
+                        continue
+                g = client.submit(relax_task, s.t_over_R, s.h_over_R, st.interface, st.mesh,
+                                  start, s.gamma_max_hat, plan.settings,
+                                  s.key["solver_source"], views, pure=False,
+                                  key=f"relax-{s.fingerprint[:12]}-{i}-{uuid.uuid4().hex[:8]}")
+                owner[g] = (job, (i, part))
+                pending.add(g)
+                job.remaining += 1
+        else:
+            i, part = k
+            r, seconds = f.result()
+            job.relaxations[i] = r
+            job.seconds += seconds
+            job.remaining -= 1
+            cat.store_part(s.key, part, relaxation_to_dataset(r, seconds), seconds)
+            tally.relaxations_computed += 1
+        progress.update("relaxation paths", note=relax_note())
+        if job.remaining == 0:
+            try:
+                finish(job)
+            except Exception as e:      # a set that cannot be stored is a failure too
+                fail(job, _reason("store", e))
+
+    unreachable_since = None
+    while pending:
+        try:
+            done, _ = wait(list(pending), timeout=1.0, return_when="FIRST_COMPLETED")
+        except TimeoutError:
+            done = set()
+        for f in done:
+            pending.discard(f)
+            if f in owner:
+                if f.status in ("lost", "cancelled") and external:
+                    pending.add(f)          # decided below: the scheduler may be gone
+                    continue
+                arrived(f)
+        if external:
+            if client.status == "running" and not any(f.status == "cancelled" for f in pending):
+                unreachable_since = None
+            elif unreachable_since is None:
+                unreachable_since = time.perf_counter()
+            elif time.perf_counter() - unreachable_since > LOST_AFTER_S:
+                raise SchedulerLost(f"lost the dask scheduler {client.scheduler.address}")
+    progress.update("relaxation paths", n_shells, note=relax_note())
 
 
 # -- the run -----------------------------------------------------------------------------
@@ -234,22 +386,72 @@ class Outcome:
     catalogue: Path
     discarded: list         # catalogue entries found corrupt and dropped
     products: Products = None   # tables and figures written from the cube
+    relaxations_computed: int = 0   # relaxation paths solved by this run
+    relaxations_reused: int = 0     # relaxation paths kept from an interrupted run
+    dataset: object = None          # the cube as written (xarray.Dataset)
 
 
-def run(study_path, out_dir=DEFAULT_OUT, scheduler=None, catalogue_dir=None, progress=True,
-        n_workers=None, settings: Settings = None) -> Outcome:
-    """Run a study file; raises StudyError (before creating anything) if it is invalid.
+def _held_by_index(plan: Plan, catalogue) -> int:
+    """How many of the plan's sets the catalogue's index holds (read only; 0 if absent)."""
+    directory = Path(catalogue) if catalogue is not None else default_dir()
+    if not (directory / INDEX).exists():
+        return 0
+    with Catalogue(directory, create=False) as cat:
+        return sum(bool(cat.candidates(s.key)) for s in plan.shells)
 
-    `settings`: solver tolerances (default solver.path.Settings()); part of the FE key.
-    """
+
+def execute(study, out=None, catalogue=None, scheduler=None, progress=True, workers=None,
+            settings: Settings = None) -> Outcome:
+    """Run a study; the orchestration behind `run_study` (see there), with the details
+    of what was computed and reused.  Raises StudyError (RunInputError for --out and
+    --scheduler) before creating anything, SchedulerLost or Interrupted (after keeping
+    all finished work in the catalogue, writing no cube)."""
     t0 = time.perf_counter()
-    study = load_study(study_path)
+    study = _study_of(study)
     plan = make_plan(study, settings if settings is not None else Settings())
-    out_dir = Path(out_dir)
+    out_dir = check_out(out if out is not None else DEFAULT_OUT)
+    _writable_folder("catalogue", catalogue if catalogue is not None else default_dir())
     output = out_dir / f"{study.name}.nc"
-    cat = Catalogue(catalogue_dir)
+    with _quiet_dask():
+        client = None
+        if scheduler and _held_by_index(plan, catalogue) < len(plan.shells):
+            client = _connect_external(scheduler)       # before anything is created
+        try:
+            return _execute(plan, out_dir, output, catalogue, scheduler, client, progress,
+                            workers, t0)
+        finally:
+            if client is not None:
+                try:
+                    client.close(timeout=5)
+                except Exception:       # a lost scheduler cannot be told goodbye
+                    pass
+
+
+@contextmanager
+def _quiet_dask():
+    """dask.distributed's own log lines (its tracebacks of a lost connection) are not
+    shown: the run reports what happened in one line."""
+    import distributed  # noqa: F401  (its import configures its loggers)
+    names = ["distributed"] + [n for n in logging.root.manager.loggerDict
+                               if n.startswith("distributed.")]
+    loggers = [logging.getLogger(n) for n in names]
+    levels = [lg.level for lg in loggers]
+    for lg in loggers:
+        lg.setLevel(logging.CRITICAL + 1)
     try:
-        out_dir.mkdir(parents=True, exist_ok=True)      # fail now, not after the FE work
+        yield
+    finally:
+        for lg, level in zip(loggers, levels):
+            lg.setLevel(level)
+
+
+def _execute(plan, out_dir, output, catalogue, scheduler, client, show, workers, t0):
+    study = plan.study
+    out_dir.mkdir(parents=True, exist_ok=True)
+    cat = Catalogue(catalogue)
+    tally = Tally()
+    run_id = None
+    try:
         run_id = cat.start_run(study.name, study.source, study.sha256, output,
                                solver.__version__)
         served, reused, missing = {}, [], []
@@ -258,42 +460,131 @@ def run(study_path, out_dir=DEFAULT_OUT, scheduler=None, catalogue_dir=None, pro
             if hit is None:
                 missing.append(s)
             else:
-                entry, ps = hit
-                served[s.t_over_R, s.h_over_R] = (entry.fingerprint,
-                                                  restrict(ps, study.delta_max_over_R))
+                entry, ds = hit
+                served[s.t_over_R, s.h_over_R] = (
+                    entry.fingerprint, restrict(from_dataset(ds), study.delta_max_over_R))
                 reused.append(s.fingerprint)
-        computed, failed = {}, {}
+        progress = Progress([("loading paths", len(missing), "shells"),
+                             ("relaxation paths", len(missing), "shells"),
+                             ("energy method", len(plan.points), "points"),
+                             ("cube", 1, "file")], enabled=show)
         if missing:
-            try:
-                with connect(scheduler, n_workers) as client:
-                    compute(plan, missing, cat, client, computed, failed, progress)
-            except (OSError, TimeoutError) as e:
-                where = f"scheduler {scheduler}" if scheduler else "local cluster"
-                for s in missing:
-                    if s.fingerprint not in computed and s.fingerprint not in failed:
-                        failed[s.fingerprint] = _reason(where, e)
+            if client is not None:
+                try:
+                    compute(plan, missing, cat, client, tally, progress, external=True)
+                except (OSError, TimeoutError, CancelledError) as e:
+                    raise SchedulerLost(f"lost the dask scheduler {scheduler} "
+                                        f"({type(e).__name__})") from None
+            else:
+                with _local_cluster(workers) as local:
+                    if _has_bokeh():
+                        progress.say(f"dask dashboard: {local.dashboard_link}")
+                    compute(plan, missing, cat, client=local, tally=tally, progress=progress)
         for s in missing:
-            if s.fingerprint in computed:
-                served[s.t_over_R, s.h_over_R] = (s.fingerprint, computed[s.fingerprint])
-        failed_th = {(s.t_over_R, s.h_over_R): failed[s.fingerprint]
-                     for s in missing if s.fingerprint in failed}
+            if s.fingerprint in tally.computed:
+                served[s.t_over_R, s.h_over_R] = (s.fingerprint, tally.computed[s.fingerprint])
+        failed_th = {(s.t_over_R, s.h_over_R): tally.failed[s.fingerprint]
+                     for s in missing if s.fingerprint in tally.failed}
         history = (f"{time.strftime('%Y-%m-%dT%H:%M:%S%z')} shell-adhesion "
                    f"{solver.__version__}: run_study {study.source}")
+        progress.start("energy method")
         ds = dataset.build(plan, served, failed_th, history)
+        progress.update("energy method", len(plan.points))
+        progress.start("cube")
         dataset.write(ds, output)
         try:
             products = write_products(output)
         except Exception as e:      # the cube is written; a drawing bug must not lose it
             products = Products(skipped={"tables and figures": _reason("products", e)})
+        progress.update("cube", 1, note=str(output))
         counts = dataset.summary_counts(ds)
         bad = counts["solver failed"] + counts["out of range"]
-        code = 1 if failed or bad else 0
+        code = 1 if tally.failed or bad else 0
         wall = time.perf_counter() - t0
-        cat.finish_run(run_id, code, len(computed), len(reused), len(failed), wall)
-        return Outcome(code, output, plan, list(computed), reused, failed, counts, wall,
-                       cat.dir, list(cat.discarded), products)
+        cat.finish_run(run_id, code, len(tally.computed), len(reused), len(tally.failed), wall)
+        import xarray as xr
+        with xr.open_dataset(output) as written:
+            written = written.load()
+        return Outcome(code, output, plan, list(tally.computed), reused, tally.failed, counts,
+                       wall, cat.dir, list(cat.discarded), products,
+                       tally.relaxations_computed, tally.relaxations_reused, written)
+    except KeyboardInterrupt:
+        _finish_broken(cat, run_id, 130, tally, t0)
+        raise Interrupted(f"interrupted: {_kept(tally, cat)}; run again to resume") from None
+    except SchedulerLost as e:
+        _finish_broken(cat, run_id, 1, tally, t0)
+        raise SchedulerLost(f"{e}: {_kept(tally, cat)}; no cube written; run again to "
+                            "resume") from None
     finally:
         cat.close()
+
+
+def _finish_broken(cat, run_id, code, tally, t0):
+    if run_id is None:
+        return
+    try:
+        cat.finish_run(run_id, code, len(tally.computed), 0, len(tally.failed),
+                       time.perf_counter() - t0)
+    except Exception:           # the record of a broken run is not worth a second error
+        pass
+
+
+def run_study(study, *, out=None, catalogue=None, scheduler=None, progress=True,
+              workers=None, settings: Settings = None):
+    """Run a study end to end: its cube (netCDF), tables and figures in `out`.
+
+    Every FE path set the study needs is taken from the catalogue if stored there, else
+    computed on dask and stored as it finishes (each relaxation path too), so a rerun,
+    or a run after an interruption, recomputes nothing that finished.
+
+    Parameters
+    ----------
+    study : str, path-like or dict
+        A study YAML file, or a dict of the same schema (README, "Studies"): R_mm [mm],
+        C10_MPa [MPa], t_over_R and h_over_R [1], gamma_J_m2 [J/m^2], ...
+    out : str or path-like, optional
+        Output folder (created if needed; default ``results``).  The cube is
+        ``<out>/<name>.nc``, tables and figures go beside it.
+    catalogue : str or path-like, optional
+        Catalogue folder (default ``$SHELL_ADHESION_CATALOGUE`` or ``./catalogue-data``).
+    scheduler : str, optional
+        Address (``tcp://host:port``) or scheduler file of a running dask.distributed
+        scheduler; default: a local cluster of processes, one per core.
+    progress : bool
+        Print one line per stage (loading paths, relaxation paths, energy method, cube)
+        with done/total and elapsed time to stderr, and the summary to stdout.
+    workers : int, optional
+        Size of the local cluster (ignored with `scheduler`).
+    settings : shell_adhesion.solver.path.Settings, optional
+        Solver tolerances (part of the catalogue key).
+
+    Returns
+    -------
+    xarray.Dataset
+        The results cube as written: dims C10 [MPa], t_over_R, h_over_R, gamma [J m-2];
+        forces in N, lengths in mm, energies in mJ; `status` says, per point, ok, not
+        requested, solver failed or out of range.
+
+    Raises
+    ------
+    StudyError
+        (a ValueError) an invalid study or argument, with a one-line message naming the
+        key, the value and the rule; raised before anything is created.
+    SchedulerLost
+        The dask scheduler stopped answering; finished work is kept, no cube is written.
+    Interrupted
+        (a KeyboardInterrupt) Ctrl-C; finished work is kept, no cube is written.
+    """
+    outcome = execute(study, out, catalogue, scheduler, progress, workers, settings)
+    if progress:
+        print(summary(outcome, outcome.dataset))
+    return outcome.dataset
+
+
+def exit_code(ds) -> int:
+    """0 if every requested point of the cube was evaluated, else 1."""
+    counts = dataset.summary_counts(ds)
+    return 1 if counts["solver failed"] + counts["out of range"] else 0
 
 
 def summary(outcome: Outcome, ds=None) -> str:
@@ -310,6 +601,9 @@ def summary(outcome: Outcome, ds=None) -> str:
         f"points: {c['ok']} ok, {c['out of range']} out of range, {c['solver failed']} "
         f"solver failed, {c['not requested']} not requested",
     ]
+    if outcome.relaxations_reused:
+        lines.append(f"relaxation paths: {outcome.relaxations_computed} solved, "
+                     f"{outcome.relaxations_reused} kept from an interrupted run")
     for s in p.shells:
         if s.fingerprint in outcome.failed:
             lines.append(f"  failed t/R={s.t_over_R:g} h/R={s.h_over_R:g}: "
@@ -339,50 +633,43 @@ def summary(outcome: Outcome, ds=None) -> str:
     return "\n".join(lines)
 
 
-def run_study(path_to_yaml, out_dir=DEFAULT_OUT, scheduler=None, catalogue_dir=None,
-              progress=True, n_workers=None) -> int:
-    """Run a study file end to end and print a summary; returns the exit code.
+# -- the plan without running it ---------------------------------------------------------
 
-    An invalid study prints one line to stderr and returns 2 before creating anything.
-    """
-    try:
-        outcome = run(path_to_yaml, out_dir, scheduler, catalogue_dir, progress, n_workers)
-    except StudyError as e:
-        print(f"{path_to_yaml}: {e}", file=sys.stderr)
-        return 2
-    except OSError as e:        # the catalogue or output folder cannot be created
-        print(f"{path_to_yaml}: {e}", file=sys.stderr)
-        return 2
-    import xarray as xr
-    with xr.open_dataset(outcome.output) as ds:
-        print(summary(outcome, ds.load()))
-    return outcome.exit_code
-
-
-def add_arguments(parser: argparse.ArgumentParser):
-    """The options of `run_study` on a command line."""
-    parser.add_argument("study", help="study YAML file")
-    parser.add_argument("--out", default=DEFAULT_OUT,
-                        help="output folder for <name>.nc (default: %(default)s)")
-    parser.add_argument("--scheduler", default=None, metavar="ADDRESS",
-                        help="dask.distributed scheduler address or scheduler file "
-                             "(default: a local cluster of processes)")
-    parser.add_argument("--catalogue", default=None, metavar="DIR",
-                        help="catalogue folder (default: $SHELL_ADHESION_CATALOGUE or "
-                             "./catalogue-data)")
-    parser.add_argument("--workers", type=int, default=None, metavar="N",
-                        help="local cluster size (default: one per core)")
-    parser.add_argument("--no-progress", action="store_true", help="no progress bar")
-
-
-def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m shell_adhesion.study.run", description=__doc__.split("\n")[0])
-    add_arguments(parser)
-    a = parser.parse_args(argv)
-    return run_study(a.study, a.out, a.scheduler, a.catalogue, not a.no_progress, a.workers)
-
-
-if __name__ == "__main__":
-    # run the importable module, so that the tasks pickle as shell_adhesion.study.run.*, not __main__.*
-    from shell_adhesion.study.run import main as _main
-    sys.exit(_main())
+def dry_run(study, catalogue=None, workers=None, scheduler=None) -> str:
+    """What `run` would do, as text: the distinct FE problems, how many the catalogue
+    holds (by its index), and an estimate of the time from the timings it recorded.
+    Computes nothing, creates nothing."""
+    study = _study_of(study)
+    plan = make_plan(study, Settings())
+    directory = Path(catalogue) if catalogue is not None else default_dir()
+    held, parts, times = 0, 0, []
+    if (directory / INDEX).exists():
+        with Catalogue(directory, create=False) as cat:
+            for s in plan.shells:
+                if cat.candidates(s.key):
+                    held += 1
+                else:
+                    parts += cat.count_parts(s.key)
+            times = cat.timings(study.interface, study.mesh)
+    todo = len(plan.shells) - held
+    lines = [f"study {study.name} ({study.source}): {len(plan.points)} requested points, "
+             f"{len(plan.shells)} distinct FE problems (path sets of one t/R, h/R each); "
+             f"interface {study.interface}, mesh {study.mesh}, "
+             f"delta_max/R {study.delta_max_over_R:g}",
+             f"catalogue {directory}: holds {held} of them, {todo} to compute"
+             + (f" ({parts} relaxation paths kept from an interrupted run)" if parts else "")]
+    if todo == 0:
+        lines.append("estimate: nothing to compute (no cluster is started)")
+    elif times:
+        # cost of a set ~ its loading + relaxations, scaled by delta_max/R (more states)
+        per = [(r["loading_s"] + (r["relaxation_s"] or 0.0))
+               * study.delta_max_over_R / r["delta_max_over_R"] for r in times]
+        cpu = sum(per) / len(per) * todo
+        n = workers or (None if scheduler else _cpu_count())
+        lines.append(f"estimate: about {cpu:.0f} s of FE work (mean of {len(times)} recorded "
+                     "sets of this mesh and interface, scaled by delta_max/R)"
+                     + (f", at best {cpu / n:.0f} s on {n} workers" if n else ""))
+    else:
+        lines.append(f"estimate: none (the catalogue records no timing for mesh {study.mesh}, "
+                     f"interface {study.interface})")
+    return "\n".join(lines)

@@ -1,4 +1,4 @@
-"""One stored path set as a netCDF file (the only module that knows this file layout).
+"""Path sets and relaxation paths as xarray Datasets (the stored layout), and back.
 
 Dimensionless, as the solver computes it: lengths / R, forces / (C10 R^2), energies /
 (C10 R^3).  Loading states along `loading_state`; the relaxation paths are one CF
@@ -7,27 +7,18 @@ contiguous ragged array: path k holds `relaxation_length[k]` consecutive samples
 deformed profiles along `profile` (outer and inner surface nodes), and stress maps along
 `stress_map` (deformed nodes, nodal von Mises / C10) over one triangulation.
 
-Files are written atomically (catalogue.atomic) and read from one in-memory copy, so the bytes checked against the
-index's sha256 are the bytes decoded.
+Pure conversions (no files): the catalogue stores these Datasets as they are.
 """
 from dataclasses import fields
-import hashlib
 import json
-from pathlib import Path
 
-import netCDF4
 import numpy as np
 import xarray as xr
 
-from shell_adhesion.solver.case import PathSet, Relaxation
-from shell_adhesion.solver.postprocess import Profile, StressMap
+from .case import PathSet, Relaxation
+from .postprocess import Profile, StressMap
 
-from .atomic import atomic_path
-from .fingerprint import LAYOUT, canonical_json
-
-
-class CorruptFile(Exception):
-    """A stored file is missing, truncated, altered or not the expected path set."""
+LAYOUT = 2          # version of this layout (part of the catalogue key of a path set)
 
 
 # descriptions of known fields; a field the solver adds later is stored all the same
@@ -63,6 +54,7 @@ _LONG_NAMES = {
     "map_von_mises": "von Mises stress / C10 at the nodes (mean over the elements holding each)",
     "map_triangles": "node indices of the triangles (8 per Q2 element)",
 }
+_TITLE = "shell-adhesion FE path set"
 _VIEW_SCALARS = ("stage", "a", "delta", "P")
 _ATTRS = {"t": "t_over_R", "h": "h_over_R", "interface": "interface", "mesh": "mesh",
           "delta_max": "delta_max_over_R", "gamma_max": "gamma_max_hat"}
@@ -92,13 +84,9 @@ def _column(values, kind):
     return np.array(values, dtype=float)
 
 
-def to_dataset(ps: PathSet, key: dict, fp: str) -> xr.Dataset:
-    """The path set as an xarray Dataset in the stored layout."""
-    rel = ps.relaxations
+def _relaxation_data(rel) -> dict:
+    """The relaxation paths `rel` as one contiguous ragged array."""
     data = {}
-    for f in fields(PathSet):
-        if _is_array(f):
-            data[f.name] = _var(f.name, "loading_state", np.asarray(getattr(ps, f.name)))
     for f in _stored(Relaxation):
         name = f"relaxation_{f.name}"
         if _is_array(f):
@@ -112,18 +100,10 @@ def to_dataset(ps: PathSet, key: dict, fp: str) -> xr.Dataset:
         "relaxation_length", "relaxation", np.array([len(r.delta) for r in rel], dtype=np.int64),
         sample_dimension="relaxation_state")
     data["relaxation_length"][2]["long_name"] = "samples of the path along relaxation_state"
-    data.update(_views_data(ps.views))
-    attrs = dict(
-        title="shell-adhesion FE path set (dimensionless: lengths / R, forces / (C10 R^2), "
-              "energies / (C10 R^3))",
-        Conventions="CF-1.8", layout=LAYOUT, fingerprint=fp, key=canonical_json(key),
-        stats=json.dumps(ps.stats, sort_keys=True, default=lambda o: o.item()),
-        **{a: getattr(ps, f) for f, a in _ATTRS.items()})
-    return xr.Dataset(data, attrs=attrs)
+    return data
 
 
-def from_dataset(ds: xr.Dataset) -> PathSet:
-    """The PathSet stored in `ds` (the inverse of to_dataset)."""
+def _relaxations_of(ds: xr.Dataset, views=()) -> tuple:
     lengths = ds["relaxation_length"].values
     ends = np.cumsum(lengths)
     starts = ends - lengths
@@ -137,14 +117,60 @@ def from_dataset(ds: xr.Dataset) -> PathSet:
             else:
                 kind = {"bool": bool, "str": str, "int": int, "float": float}.get(f.type, f.type)
                 kw[f.name] = kind(v[k])
-        rel.append(Relaxation(**kw))
+        rel.append(Relaxation(views=views, **kw))
+    return tuple(rel)
+
+
+def _json_stats(stats) -> str:
+    return json.dumps(stats, sort_keys=True, default=lambda o: o.item())
+
+
+def to_dataset(ps: PathSet) -> xr.Dataset:
+    """The path set as an xarray Dataset in the stored layout (dimensionless)."""
+    data = {}
+    for f in fields(PathSet):
+        if _is_array(f):
+            data[f.name] = _var(f.name, "loading_state", np.asarray(getattr(ps, f.name)))
+    data.update(_relaxation_data(ps.relaxations))
+    data.update(_views_data(ps.views))
+    attrs = dict(
+        title=_TITLE + " (dimensionless: lengths / R, forces / (C10 R^2), energies / (C10 R^3))",
+        Conventions="CF-1.8", layout=LAYOUT, stats=_json_stats(ps.stats),
+        **{a: getattr(ps, f) for f, a in _ATTRS.items()})
+    return xr.Dataset(data, attrs=attrs)
+
+
+def from_dataset(ds: xr.Dataset) -> PathSet:
+    """The PathSet stored in `ds` (the inverse of to_dataset); ValueError if `ds` is not
+    a path set of this layout."""
+    if not str(ds.attrs.get("title", "")).startswith(_TITLE) \
+            or int(ds.attrs.get("layout", -1)) != LAYOUT:
+        raise ValueError(f"not a path set of layout {LAYOUT}")
     kw = {f: ds.attrs[a] for f, a in _ATTRS.items()}
     kw = {f: (str(v) if f in ("interface", "mesh") else float(v)) for f, v in kw.items()}
     for f in fields(PathSet):
         if _is_array(f):
             kw[f.name] = ds[f.name].values
-    return PathSet(relaxations=tuple(rel), stats=json.loads(ds.attrs["stats"]),
+    return PathSet(relaxations=_relaxations_of(ds), stats=json.loads(ds.attrs["stats"]),
                    views=_views_of(ds), **kw)
+
+
+def relaxation_to_dataset(r: Relaxation, seconds: float = 0.0) -> xr.Dataset:
+    """One relaxation path (with its views) as a Dataset; `seconds`: its solve time [s]."""
+    data = _relaxation_data((r,))
+    data.update(_views_data(r.views))
+    return xr.Dataset(data, attrs=dict(
+        title="shell-adhesion FE relaxation path (dimensionless, as in a path set)",
+        Conventions="CF-1.8", layout=LAYOUT, seconds=float(seconds)))
+
+
+def relaxation_from_dataset(ds: xr.Dataset) -> tuple:
+    """(Relaxation, seconds [s]) stored by relaxation_to_dataset; ValueError if `ds` is
+    not one relaxation path of this layout."""
+    if int(ds.attrs.get("layout", -1)) != LAYOUT or ds.sizes.get("relaxation") != 1:
+        raise ValueError(f"not a relaxation path of layout {LAYOUT}")
+    (r,) = _relaxations_of(ds, _views_of(ds))
+    return r, float(ds.attrs["seconds"])
 
 
 def _views_data(views) -> dict:
@@ -190,44 +216,3 @@ def _views_of(ds: xr.Dataset) -> tuple:
                                np.stack([ds["map_r"].values[j], ds["map_z"].values[j]]),
                                ds["map_von_mises"].values[j], tri))
     return tuple(views)
-
-
-def write_atomic(ds: xr.Dataset, path, encoding=None) -> tuple:
-    """Write `ds` to `path` atomically (catalogue.atomic); returns (sha256 hex, size in
-    bytes) of the bytes written."""
-    with atomic_path(path) as tmp:
-        ds.to_netcdf(tmp, engine="netcdf4", format="NETCDF4", encoding=encoding)
-        data = Path(tmp).read_bytes()
-    return hashlib.sha256(data).hexdigest(), len(data)
-
-
-def write(path, ps: PathSet, key: dict, fp: str) -> tuple:
-    """Store a path set at `path` atomically: (sha256 hex, size in bytes)."""
-    ds = to_dataset(ps, key, fp)
-    enc = {v: {"zlib": True, "complevel": 4} for v in ds.data_vars
-           if ds[v].dtype.kind == "f" and ds[v].size > 0}
-    return write_atomic(ds, path, enc)
-
-
-def read(path, sha256: str, fp: str) -> PathSet:
-    """The path set stored at `path`; CorruptFile unless its bytes match `sha256` and
-    its fingerprint is `fp`."""
-    try:
-        data = Path(path).read_bytes()
-    except OSError as e:
-        raise CorruptFile(f"{path}: {e.strerror or e}") from None
-    if hashlib.sha256(data).hexdigest() != sha256:
-        raise CorruptFile(f"{path}: checksum mismatch")
-    try:
-        nc = netCDF4.Dataset("pathset.nc", mode="r", memory=data)
-        try:
-            ds = xr.open_dataset(xr.backends.NetCDF4DataStore(nc)).load()
-        finally:
-            nc.close()
-        if ds.attrs.get("fingerprint") != fp or int(ds.attrs.get("layout", -1)) != LAYOUT:
-            raise CorruptFile(f"{path}: not the path set {fp[:12]}")
-        return from_dataset(ds)
-    except CorruptFile:
-        raise
-    except Exception as e:      # any decoding failure means the file cannot be trusted
-        raise CorruptFile(f"{path}: cannot be read ({type(e).__name__}: {e})") from None

@@ -1,0 +1,57 @@
+"""Catalogue keys of the FE work of a study (DESIGN.md section 3).
+
+`pathset_key` is the key of one set of FE paths: the dimensionless shell, the interface,
+the mesh, how far the paths go (delta_max / R, the largest gamma / (C10 R) they serve),
+the solver tolerances and relaxation rule, the stored layout, the package version and a
+hash of the solver's source.  C10, R and gamma are not in it.  `relaxation_part` names one
+relaxation path of a set by its loaded start state, so a set killed half-way keeps its
+finished paths (catalogue parts stored under the set's fingerprint).
+"""
+from dataclasses import asdict
+from functools import lru_cache
+import hashlib
+from pathlib import Path
+
+from shell_adhesion import solver
+from shell_adhesion.catalogue import fingerprint
+from shell_adhesion.solver import case
+from shell_adhesion.solver.mesh import mesh_spec
+from shell_adhesion.solver.path import Settings, State
+from shell_adhesion.solver.pathset_dataset import LAYOUT
+
+
+@lru_cache(maxsize=1)
+def solver_source_sha256() -> str:
+    """sha256 over the solver package's Python sources (names and contents)."""
+    h = hashlib.sha256()
+    for p in sorted(Path(solver.__file__).parent.glob("*.py")):
+        h.update(p.name.encode() + b"\0" + p.read_bytes() + b"\0")
+    return h.hexdigest()
+
+
+def pathset_key(t_over_R, h_over_R, interface, mesh, delta_max_over_R, gamma_max_hat,
+                settings: Settings = None) -> dict:
+    """Key of the FE path set of one dimensionless shell (validated names and values)."""
+    settings = settings if settings is not None else Settings()
+    return {
+        "kind": "shell-adhesion path set",
+        "layout": LAYOUT,
+        "t_over_R": float(t_over_R),
+        "h_over_R": float(h_over_R),
+        "interface": str(interface),
+        "mesh": str(mesh),
+        "mesh_spec": asdict(mesh_spec(mesh)),
+        "delta_max_over_R": float(delta_max_over_R),
+        "gamma_max_hat": float(gamma_max_hat),
+        "settings": asdict(settings),
+        "relaxation_rule": {"G_SAFETY": case.G_SAFETY, "STEPS_PER_PATH": case.STEPS_PER_PATH},
+        "version": solver.__version__,
+        "solver_source": solver_source_sha256(),
+    }
+
+
+def relaxation_part(start: State, views: bool) -> str:
+    """Name of the relaxation path from the loaded state `start` (with its views or not)
+    among the parts of a path set: a fingerprint of the start state."""
+    return fingerprint({"delta": start.delta, "a": start.a, "held": list(start.held),
+                        "views": bool(views)})

@@ -274,7 +274,7 @@ def limit_exceeded(f, m: Material):
     J = (f[_RR] * f[_ZZ] - f[_RZ] * f[_ZR]) * f[_TT]
     with np.errstate(invalid="ignore", divide="ignore"):
         x = J ** (-2.0 / 3.0) * np.sum(f * f, axis=0) - 3.0
-    return float(np.max(x)) / m.Jm
+    return float(np.nanmax(x, initial=-np.inf)) / m.Jm   # NaN: an inverted point
 
 
 def energy(f, m: Material = NEO_HOOKE):

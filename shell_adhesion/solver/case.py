@@ -13,6 +13,7 @@ import numpy as np
 from .energy import EnergySurface, energy_surface, equilibrium, pull_off
 from .forms import Discretisation, discretise
 from .geometry import Cap, InputError
+from .material import NEO_HOOKE, Material
 from .mesh import CapMesh, cap_mesh, mesh_spec
 from .path import LoadingPath, RelaxationPath, Settings, State, load, relax
 from .postprocess import StressMap, profile, spread, stress_map
@@ -162,17 +163,18 @@ class PathSet:
 
 
 def solve_loading(t: float, h: float, interface: str, mesh: str, delta_max: float,
-                  settings: Settings = Settings(), progress=None):
+                  settings: Settings = Settings(), progress=None, material: Material = NEO_HOOKE):
     """Discretisation and loading path of one dimensionless shell."""
     cm = cap_mesh(Cap(t, h), mesh_spec(mesh))
-    d = discretise(cm)
+    d = discretise(cm, material=material)
     return d, load(d, interface, delta_max, settings, progress)
 
 
 def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "default",
                 delta_max: float = 0.25, gamma_max: float = GAMMA_MAX,
                 settings: Settings = Settings(), relax_paths: bool = True,
-                progress=None, map=None, path_progress=None) -> tuple:
+                progress=None, map=None, path_progress=None,
+                material: Material = NEO_HOOKE) -> tuple:
     """Loading and relaxation paths of one shell: (PathSet, Discretisation, LoadingPath).
 
     `progress(delta)` is called after each loading state, `path_progress(done, total)`
@@ -180,7 +182,7 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
     relaxation paths in parallel.
     """
     t0 = time.perf_counter()
-    d, loading = solve_loading(t, h, interface, mesh, delta_max, settings, progress)
+    d, loading = solve_loading(t, h, interface, mesh, delta_max, settings, progress, material)
     t1 = time.perf_counter()
     relaxations = ()
     if relax_paths:
@@ -197,7 +199,7 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
             n = len(starts)
             relaxations = tuple(map(relaxation_task, [t] * n, [h] * n, [interface] * n,
                                     [mesh] * n, starts, [gamma_max] * n, [settings] * n,
-                                    [i == n - 1 for i in range(n)]))
+                                    [i == n - 1 for i in range(n)], [material] * n))
     t2 = time.perf_counter()
     stats = dict(dofs=int(d.ndof), elements=int(d.capmesh.mesh.nelements),
                  loading_states=len(loading.states),
@@ -223,9 +225,9 @@ def pathset_of(t, h, interface, mesh, delta_max, gamma_max, loading, relaxations
 
 def relaxation_task(t: float, h: float, interface: str, mesh: str, start: State,
                     gamma_max: float = GAMMA_MAX, settings: Settings = Settings(),
-                    views: bool = False) -> Relaxation:
+                    views: bool = False, material: Material = NEO_HOOKE) -> Relaxation:
     """One relaxation path as an independent task (rebuilds the discretisation); with
     `views`, it keeps the path's profiles and stress map."""
-    d = discretise(cap_mesh(Cap(t, h), mesh_spec(mesh)))
+    d = discretise(cap_mesh(Cap(t, h), mesh_spec(mesh)), material=material)
     return Relaxation.of(relax_from(d, interface, start, gamma_max, settings),
                          d if views else None)

@@ -4,7 +4,9 @@ Unknowns, in units of R and C10: nodal u_r, u_z (Q2) and the multiplier p (Q1).
 Global layout: x = [u_r (n2), u_z (n2), p (n1)].  Integrals carry the full 2 pi r weight,
 so residual entries are forces over 360 degrees (units of C10 R^2) and the energy is in
 units of C10 R^3.  The deformation gradient is linear in u, so the strain-displacement
-operator B is assembled once and reused.
+operator B is assembled once and reused.  The material (`solver.material`) is part of the
+discretisation; with a compressible one (D1 > 0) the pressure rows gain -(D1 C10 / 2) p, the
+same sparsity.
 """
 from dataclasses import dataclass
 
@@ -12,7 +14,7 @@ import numpy as np
 import scipy.sparse as sp
 from skfem import CellBasis, ElementQuad1, ElementQuad2
 
-from .material import energy, lagrangian_derivatives
+from .material import NEO_HOOKE, Material, energy, lagrangian_derivatives, limit_exceeded
 from .mesh import CapMesh
 
 
@@ -32,6 +34,7 @@ class Discretisation:
     csr_indptr: np.ndarray
     csr_indices: np.ndarray
     csr_slot: np.ndarray # (E * 22 * 22,) position of each element entry in the CSR data
+    material: Material = NEO_HOOKE
 
     @property
     def force_scale(self) -> float:
@@ -49,8 +52,8 @@ class Discretisation:
         return self.n2 + np.asarray(nodes)
 
 
-def discretise(capmesh: CapMesh, C10: float = 1.0) -> Discretisation:
-    """FE space of `capmesh`; `C10` scales the material (1 = the dimensionless solver)."""
+def discretise(capmesh: CapMesh, C10: float = 1.0, material: Material = NEO_HOOKE) -> Discretisation:
+    """FE space of `capmesh` for `material`; `C10` scales it (1 = the dimensionless solver)."""
     mesh = capmesh.mesh
     bu = CellBasis(mesh, ElementQuad2(), intorder=4)
     bp = CellBasis(mesh, ElementQuad1(), quadrature=bu.quadrature)
@@ -74,7 +77,7 @@ def discretise(capmesh: CapMesh, C10: float = 1.0) -> Discretisation:
     indices = (keys % ndof).astype(np.int32)
     indptr = np.searchsorted(keys // ndof, np.arange(ndof + 1)).astype(np.int32)
     return Discretisation(capmesh, n2, n1, edofs, B, Np, bu.dx * 2 * np.pi * rq * C10, rq, zq,
-                          indptr, indices, slot.ravel())
+                          indptr, indices, slot.ravel(), material)
 
 
 def _fields(d: Discretisation, x):
@@ -90,17 +93,36 @@ def deformation(d: Discretisation, x):
     return _fields(d, x)
 
 
+def _checked(d: Discretisation, f):
+    """f, unless a Gent solid reaches its limit I1bar - 3 = Jm somewhere (ConvergenceError)."""
+    ratio = limit_exceeded(f, d.material)
+    if not ratio < 1.0 and np.isfinite(ratio):
+        from .path import ConvergenceError  # path imports this module
+        raise ConvergenceError(
+            f"gent limit reached: I1bar - 3 = {ratio * d.material.Jm:.6g} >= Jm = "
+            f"{d.material.Jm:g} (the solid locks up; lower delta or raise Jm)")
+    return f
+
+
 def strain_energy(d: Discretisation, x) -> float:
-    """Strain energy / (C10 R^3), the integral of W over the deformed shell (360 degrees)."""
-    f, _ = _fields(d, x)
-    return float(np.sum(energy(f) * d.w))
+    """Strain energy / (C10 R^3), the integral of W over the deformed shell (360 degrees).
+
+    For a compressible solid, the integral of the Lagrangian W + p (J - 1) - (D1 C10 / 4) p^2
+    (p eliminated: W + U(J) in the discrete sense), whose derivative in delta is P.
+    """
+    f, p = _fields(d, x)
+    W = energy(_checked(d, f), d.material)
+    if d.material.compressible:
+        J = (f[0] * f[3] - f[1] * f[2]) * f[4]
+        W = W + p * (J - 1.0) - 0.25 * d.material.D1_times_C10 * p * p
+    return float(np.sum(W * d.w))
 
 
 def residual(d: Discretisation, x):
     """Internal force vector dL/dx (units of C10 R^2; pressure rows: volume / R^3)."""
     f, p = _fields(d, x)
-    dL, _, J, _ = lagrangian_derivatives(f, p)
-    return _scatter_vector(d, np.einsum("iaeq,ieq->ae", d.B, dL * d.w), (J - 1.0) * d.w)
+    dL, _, _, _, dLdp, _ = lagrangian_derivatives(_checked(d, f), p, d.material)
+    return _scatter_vector(d, np.einsum("iaeq,ieq->ae", d.B, dL * d.w), dLdp * d.w)
 
 
 def _scatter_vector(d, ru, jw):
@@ -111,9 +133,9 @@ def _scatter_vector(d, ru, jw):
 def tangent(d: Discretisation, x):
     """Consistent tangent (CSR, symmetric indefinite) and residual at x."""
     f, p = _fields(d, x)
-    dL, d2L, J, dJ = lagrangian_derivatives(f, p)
+    dL, d2L, J, dJ, dLdp, d2Ldp2 = lagrangian_derivatives(_checked(d, f), p, d.material)
     w = d.w
-    r = _scatter_vector(d, np.einsum("iaeq,ieq->ae", d.B, dL * w), (J - 1.0) * w)
+    r = _scatter_vector(d, np.einsum("iaeq,ieq->ae", d.B, dL * w), dLdp * w)
     E, Q = w.shape
     Bq = d.B.transpose(2, 3, 0, 1)                            # (E, Q, 5, 18)
     DB = np.matmul(np.moveaxis(d2L * w, (0, 1), (2, 3)), Bq)  # (E, Q, 5, 18)
@@ -123,6 +145,8 @@ def tangent(d: Discretisation, x):
     Ke[:, :18, :18] = Kuu
     Ke[:, :18, 18:] = Kup
     Ke[:, 18:, :18] = Kup.transpose(0, 2, 1)
+    if d2Ldp2:
+        Ke[:, 18:, 18:] = d2Ldp2 * np.einsum("beq,ceq,eq->ebc", d.Np, d.Np, w)
     data = np.bincount(d.csr_slot, weights=Ke.ravel(), minlength=len(d.csr_indices))
     K = sp.csr_matrix((data, d.csr_indices, d.csr_indptr), shape=(d.ndof, d.ndof))
     return K, r

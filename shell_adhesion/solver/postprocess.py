@@ -41,7 +41,7 @@ def von_mises_field(d: Discretisation, x):
     Returns (r, z, sigma_vm), each of shape (E, Q).
     """
     f, p = deformation(d, x)
-    sigma = cauchy_stress(f, p)
+    sigma = cauchy_stress(f, p, d.material)
     xe = x[d.edofs[:18]]
     N = d.B[4, :9] * d.r_q[None]          # Q2 shape functions (B carries N / r in row 4)
     ur = np.einsum("aeq,ae->eq", N, xe[:9])
@@ -71,7 +71,7 @@ def nodal_von_mises(d: Discretisation, x):
     f[4] = np.where(on_axis, f[0], 1 + u_r / np.where(on_axis, 1.0, r))
     Np = np.array([np.asarray(bp.basis[b][0]) for b in range(4)])
     p = np.einsum("beq,be->eq", Np, x[d.edofs[18:]])
-    vm = von_mises(cauchy_stress(f, p))                                 # (E, 9 nodes)
+    vm = von_mises(cauchy_stress(f, p, d.material))                             # (E, 9 nodes)
     nodes = d.edofs[:9].T                                               # (E, 9)
     total = np.bincount(nodes.ravel(), weights=vm.ravel(), minlength=d.n2)
     count = np.bincount(nodes.ravel(), minlength=d.n2)

@@ -1,7 +1,11 @@
 """Closed-form contact theories, dimensional (mm, N, MPa, J/m^2).
 
-Incompressible solid: nu = 1/2, E = 6 C10, plane-strain modulus E* = E / (1 - nu^2) = 8 C10
-against a rigid flat.  Signs: P > 0 compression, delta > 0 approach.
+The small-strain solid: shear modulus mu0 = 2 (C10 + C01) (Yeoh and Gent: 2 C10), bulk
+modulus K = 2 / D1, Poisson ratio nu = (3 K - 2 mu0) / (2 (3 K + mu0)) (1/2 if incompressible),
+E = 2 mu0 (1 + nu) (3 mu0 if incompressible), plane-strain modulus E* = E / (1 - nu^2)
+against a rigid flat (8 C10 for the incompressible neo-Hookean solid).  Each function takes
+C10 and an optional `material` (solver.material.Material, the ratios to C10; neo-Hooke by
+default).  Signs: P > 0 compression, delta > 0 approach.
 
 - Hertz: P = (4/3) E* sqrt(R) delta^(3/2), a = sqrt(R delta).
 - JKR: P = 4 E* a^3 / (3 R) - sqrt(8 pi gamma E* a^3); fixed load pull-off
@@ -11,16 +15,36 @@ against a rigid flat.  Signs: P > 0 compression, delta > 0 approach.
 """
 import math
 
-NU = 0.5
+from .material import NEO_HOOKE, Material
+
+NU = 0.5        # the incompressible solid's Poisson ratio
 
 
-def e_star_MPa(C10_MPa):
-    """Plane-strain modulus of the incompressible neo-Hookean solid, 8 C10."""
-    return 6.0 * C10_MPa / (1.0 - NU ** 2)
+def shear_modulus_MPa(C10_MPa, material: Material = NEO_HOOKE):
+    """Small-strain shear modulus mu0 = 2 (C10 + C01)."""
+    return material.mu0 * C10_MPa
 
 
-def hertz_P_N(delta_mm, R_mm, C10_MPa):
-    return 4.0 / 3.0 * e_star_MPa(C10_MPa) * math.sqrt(R_mm) * delta_mm ** 1.5
+def poisson_ratio(material: Material = NEO_HOOKE):
+    """nu = (3 K - 2 mu0) / (2 (3 K + mu0)), K = 2 / D1; 1/2 for an incompressible solid."""
+    if not material.compressible:
+        return NU
+    K, mu = material.bulk_modulus, material.mu0
+    return (3.0 * K - 2.0 * mu) / (2.0 * (3.0 * K + mu))
+
+
+def youngs_modulus_MPa(C10_MPa, material: Material = NEO_HOOKE):
+    """E = 2 mu0 (1 + nu) (= 3 mu0 = 6 C10 for the incompressible neo-Hookean solid)."""
+    return 2.0 * shear_modulus_MPa(C10_MPa, material) * (1.0 + poisson_ratio(material))
+
+
+def e_star_MPa(C10_MPa, material: Material = NEO_HOOKE):
+    """Plane-strain modulus E* = E / (1 - nu^2) (8 C10 for the incompressible neo-Hookean)."""
+    return youngs_modulus_MPa(C10_MPa, material) / (1.0 - poisson_ratio(material) ** 2)
+
+
+def hertz_P_N(delta_mm, R_mm, C10_MPa, material: Material = NEO_HOOKE):
+    return 4.0 / 3.0 * e_star_MPa(C10_MPa, material) * math.sqrt(R_mm) * delta_mm ** 1.5
 
 
 def hertz_a_mm(delta_mm, R_mm):
@@ -35,21 +59,25 @@ def jkr_P_dagger_N(R_mm, gamma_J_m2):
     return -5.0 / 6.0 * math.pi * R_mm * gamma_J_m2 * 1e-3
 
 
-def jkr_a_star_mm(R_mm, C10_MPa, gamma_J_m2):
-    return (9.0 * math.pi * gamma_J_m2 * 1e-3 * R_mm ** 2 / (8.0 * e_star_MPa(C10_MPa))) ** (1 / 3)
+def jkr_a_star_mm(R_mm, C10_MPa, gamma_J_m2, material: Material = NEO_HOOKE):
+    return (9.0 * math.pi * gamma_J_m2 * 1e-3 * R_mm ** 2
+            / (8.0 * e_star_MPa(C10_MPa, material))) ** (1 / 3)
 
 
-def jkr_a0_mm(R_mm, C10_MPa, gamma_J_m2):
+def jkr_a0_mm(R_mm, C10_MPa, gamma_J_m2, material: Material = NEO_HOOKE):
     """Contact radius at zero load: a0^3 = 9 pi gamma R^2 / (2 E*)."""
-    return (4.5 * math.pi * gamma_J_m2 * 1e-3 * R_mm ** 2 / e_star_MPa(C10_MPa)) ** (1 / 3)
+    return (4.5 * math.pi * gamma_J_m2 * 1e-3 * R_mm ** 2
+            / e_star_MPa(C10_MPa, material)) ** (1 / 3)
 
 
-def shell_law_scale_N(R_mm, t_mm, C10_MPa, gamma_J_m2):
+def shell_law_scale_N(R_mm, t_mm, C10_MPa, gamma_J_m2, material: Material = NEO_HOOKE):
     """[gamma^4 R^4 (1 - nu^2) / (E t^2)]^(1/3) of eq. 3, in N."""
     g = gamma_J_m2 * 1e-3
-    return (g ** 4 * R_mm ** 4 * (1 - NU ** 2) / (6.0 * C10_MPa * t_mm ** 2)) ** (1 / 3)
+    nu = poisson_ratio(material)
+    E = youngs_modulus_MPa(C10_MPa, material)
+    return (g ** 4 * R_mm ** 4 * (1 - nu ** 2) / (E * t_mm ** 2)) ** (1 / 3)
 
 
-def eta_of(P_star_N, R_mm, t_mm, C10_MPa, gamma_J_m2):
+def eta_of(P_star_N, R_mm, t_mm, C10_MPa, gamma_J_m2, material: Material = NEO_HOOKE):
     """eta of eq. 3 from a pull-off force (|P*| / scale)."""
-    return abs(P_star_N) / shell_law_scale_N(R_mm, t_mm, C10_MPa, gamma_J_m2)
+    return abs(P_star_N) / shell_law_scale_N(R_mm, t_mm, C10_MPa, gamma_J_m2, material)

@@ -22,7 +22,7 @@ import time
 
 from shell_adhesion.solver import INTERFACES, ConvergenceError, InputError, __version__
 
-from .case import MESHES
+from . import case as case_api
 
 FIGURE_FORMATS = ("png", "pdf", "svg")
 # the flag of each input of `case` (study.case.case_input names the fields this way)
@@ -56,14 +56,12 @@ def _number(flag, text, unit):
 
 
 def _run_case(ns):
-    from .case import case_input, solve_case
-
-    inp = case_input(_number("--R", ns.R, "mm"), _number("--t", ns.t, "mm"),
+    inp = case_api.case_input(_number("--R", ns.R, "mm"), _number("--t", ns.t, "mm"),
                      _number("--h", ns.h, "mm"), _number("--C10", ns.C10, "MPa"),
                      [_number("--gamma", g, "J/m^2") for g in ns.gamma or []],
                      None if ns.delta_max is None else _number("--delta-max", ns.delta_max, "mm"),
                      ns.interface, ns.mesh, names=CASE_FLAGS)
-    result = solve_case(inp.R_mm, inp.t_mm, inp.h_mm, inp.C10_MPa, inp.gamma_J_m2,
+    result = case_api.solve_case(inp.R_mm, inp.t_mm, inp.h_mm, inp.C10_MPa, inp.gamma_J_m2,
                         delta_max_mm=inp.delta_max_mm, interface=inp.interface, mesh=inp.mesh)
     if ns.json:
         print(result.to_json())
@@ -221,7 +219,7 @@ def _parser():
                       help="adhesion energy gamma [J/m^2]; repeat for several (one FE run serves all)")
     case.add_argument("--interface", choices=INTERFACES, default="no_slip",
                       help="interface model (default no_slip, the paper's cohesive contact)")
-    case.add_argument("--mesh", choices=MESHES, default="default", help="mesh density")
+    case.add_argument("--mesh", choices=case_api.MESHES, default="default", help="mesh density")
     case.add_argument("--json", action="store_true", help="print JSON instead of a table")
     run = sub.add_parser("run", help="run a study YAML on dask; write netCDF, tables and figures")
     run.add_argument("study", help="study file (YAML)")

@@ -9,6 +9,7 @@ Compressible pure dilation F = l I: sigma = dU/dJ = 2 (J - 1) / D1.
 """
 import json
 import math
+import pickle
 
 import numpy as np
 import pytest
@@ -168,6 +169,7 @@ def test_reductions_at_a_point():
 def test_material_record():
     m = Material("mooney_rivlin", C01_over_C10=0.2, D1_times_C10=3e-6)
     assert m == Material.from_dict(json.loads(json.dumps(m.as_dict())))
+    assert m == pickle.loads(pickle.dumps(m))      # shipped to relaxation tasks
     assert hash(m) == hash(Material("mooney_rivlin", 0.2, 0, 0, None, 3e-6))
     assert Material() == NEO_HOOKE and NEO_HOOKE.mu0 == 2.0 and not NEO_HOOKE.compressible
     assert m.mu0 == pytest.approx(2.4) and m.bulk_modulus == pytest.approx(2 / 3e-6)

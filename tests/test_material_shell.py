@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 from shell_adhesion.solver import theory
-from shell_adhesion.solver.case import relax_from, relaxation_starts, solve_loading
+from shell_adhesion.solver.case import (relax_from, relaxation_starts, relaxation_task,
+                                        solve_loading, solve_paths)
 from shell_adhesion.solver.material import Material
 from test_energy import hermite_integral, loading_work
 
@@ -111,3 +112,19 @@ def test_eq1_equals_strain_energy(material):
              for j in range(len(delta) - 1)])])
         err = np.abs(by_state[id(start)] - recovered - Urel) / np.abs(Urel)
         assert err.max() <= 1e-4, err.max()
+
+
+def test_material_reaches_every_entry_point():
+    """solve_paths and relaxation_task (an independent task, as run by a process pool)
+    solve the material they are given."""
+    m = ENERGY_MATERIALS[0]
+    d, path = loading(m, delta_max=0.1)
+    ps, _, _ = solve_paths(BASE["t"], BASE["h"], "no_slip", "coarse", 0.1, relax_paths=False,
+                           material=m)
+    np.testing.assert_array_equal(ps.loading_P, path.array("P"))
+    start = relaxation_starts(path, d.capmesh)[-1]
+    rel = relaxation_task(BASE["t"], BASE["h"], "no_slip", "coarse", start, 0.006, material=m)
+    direct = relax_from(d, "no_slip", start, 0.006)
+    np.testing.assert_array_equal(rel.P, direct.array("P"))
+    neo = relaxation_task(BASE["t"], BASE["h"], "no_slip", "coarse", start, 0.006)
+    assert not np.allclose(neo.P[1:], rel.P[1:], rtol=1e-3)

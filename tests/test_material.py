@@ -9,6 +9,7 @@ Compressible pure dilation F = l I: sigma = dU/dJ = 2 (J - 1) / D1.
 """
 import json
 import math
+import pickle
 
 import numpy as np
 import pytest
@@ -168,6 +169,7 @@ def test_reductions_at_a_point():
 def test_material_record():
     m = Material("mooney_rivlin", C01_over_C10=0.2, D1_times_C10=3e-6)
     assert m == Material.from_dict(json.loads(json.dumps(m.as_dict())))
+    assert m == pickle.loads(pickle.dumps(m))      # shipped to relaxation tasks
     assert hash(m) == hash(Material("mooney_rivlin", 0.2, 0, 0, None, 3e-6))
     assert Material() == NEO_HOOKE and NEO_HOOKE.mu0 == 2.0 and not NEO_HOOKE.compressible
     assert m.mu0 == pytest.approx(2.4) and m.bulk_modulus == pytest.approx(2 / 3e-6)
@@ -187,6 +189,25 @@ def test_bad_parameters_refused(kwargs, message):
     with pytest.raises(InputError) as e:
         Material(**kwargs)
     assert message in str(e.value) and "\n" not in str(e.value)
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(model="yeoh", C01_MPa=0.05), "C01: 0.05 is not a coefficient of the yeoh model "
+                                       "(C10, C20, C30, D1)"),
+    (dict(model="neo_hooke", Jm=20), "Jm: 20 is not a coefficient of the neo_hooke model"),
+    (dict(C10_MPa=0.0), "C10_MPa: 0.0 must be a number > 0"),
+    (dict(D1_per_MPa=-0.01), "D1: -0.01 /MPa must be >= 0"),
+    (dict(model="gent", Jm="20"), "Jm: '20' must be a finite number"),
+])
+def test_bad_coefficients_in_MPa_refused(kwargs, message):
+    with pytest.raises(InputError) as e:
+        Material.from_MPa(**({"C10_MPa": 0.3} | kwargs))
+    assert message in str(e.value) and "\n" not in str(e.value)
+
+
+def test_numpy_scalars_are_numbers():
+    m = Material.from_MPa("mooney_rivlin", C10_MPa=np.float32(0.3), C01_MPa=np.int64(0))
+    assert m == Material("mooney_rivlin") and type(m.C01_over_C10) is float
 
 
 def test_unstable_sets_refused_with_the_stretch():

@@ -179,7 +179,8 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
 
     `progress(delta)` is called after each loading state, `path_progress(done, total)`
     after each relaxation path; `map` (e.g. an executor's map) runs the independent
-    relaxation paths in parallel.
+    relaxation paths in parallel.  `material` (solver.material.Material, ratios to C10)
+    is the solid; neo-Hooke by default.
     """
     t0 = time.perf_counter()
     d, loading = solve_loading(t, h, interface, mesh, delta_max, settings, progress, material)

@@ -52,7 +52,8 @@ class Discretisation:
         return self.n2 + np.asarray(nodes)
 
 
-def discretise(capmesh: CapMesh, C10: float = 1.0, material: Material = NEO_HOOKE) -> Discretisation:
+def discretise(capmesh: CapMesh, C10: float = 1.0,
+               material: Material = NEO_HOOKE) -> Discretisation:
     """FE space of `capmesh` for `material`; `C10` scales it (1 = the dimensionless solver)."""
     mesh = capmesh.mesh
     bu = CellBasis(mesh, ElementQuad2(), intorder=4)

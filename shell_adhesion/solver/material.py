@@ -25,6 +25,7 @@ the pressure).
 """
 from dataclasses import asdict, dataclass
 import math
+import numbers
 
 import numpy as np
 
@@ -67,8 +68,7 @@ class Material:
                 if "Jm" in used:
                     raise InputError("Jm: the gent model needs Jm (a number > 0)")
                 continue
-            if (not isinstance(value, (int, float)) or isinstance(value, bool)
-                    or not math.isfinite(value)):
+            if not _is_number(value):
                 raise InputError(f"{name}: {value!r} must be a finite number")
             object.__setattr__(self, name, float(value))
             if name not in used and name != "D1_times_C10" and value != 0:
@@ -86,14 +86,20 @@ class Material:
     def from_MPa(cls, model="neo_hooke", C10_MPa=1.0, C01_MPa=0.0, C20_MPa=0.0, C30_MPa=0.0,
                  Jm=None, D1_per_MPa=0.0):
         """The Material of ABAQUS coefficients in MPa (D1 in 1/MPa); C10_MPa stays the scale."""
-        if (not isinstance(C10_MPa, (int, float)) or isinstance(C10_MPa, bool)
-                or not math.isfinite(C10_MPa) or not C10_MPa > 0):
+        if not _is_number(C10_MPa) or not C10_MPa > 0:
             raise InputError(f"C10_MPa: {C10_MPa!r} must be a number > 0")
-        values = dict(C01_MPa=C01_MPa, C20_MPa=C20_MPa, C30_MPa=C30_MPa, D1_per_MPa=D1_per_MPa)
-        for name, value in values.items():
-            if (not isinstance(value, (int, float)) or isinstance(value, bool)
-                    or not math.isfinite(value)):
+        values = dict(C01=C01_MPa, C20=C20_MPa, C30=C30_MPa)
+        for name, value in (*values.items(), ("D1", D1_per_MPa)):
+            if not _is_number(value):
                 raise InputError(f"{name}: {value!r} must be a finite number")
+        if model in MODELS:
+            used = [n for _, n in _COEFFICIENTS[model]]
+            for name, value in (*values.items(), ("Jm", Jm)):
+                if name not in used and value is not None and value != 0:
+                    raise InputError(f"{name}: {value!r} is not a coefficient of the {model} "
+                                     f"model ({', '.join(['C10', *used, 'D1'])})")
+        if not D1_per_MPa >= 0:
+            raise InputError(f"D1: {D1_per_MPa:g} /MPa must be >= 0 (0: incompressible)")
         try:
             return cls(model, C01_MPa / C10_MPa, C20_MPa / C10_MPa, C30_MPa / C10_MPa, Jm,
                        D1_per_MPa * C10_MPa)
@@ -135,6 +141,12 @@ class Material:
     @classmethod
     def from_dict(cls, d: dict):
         return cls(**d)
+
+
+def _is_number(value) -> bool:
+    """A finite real number (numpy scalars included, booleans not)."""
+    return (isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_))
+            and math.isfinite(value))
 
 
 class UnstableMaterial(InputError):

@@ -17,8 +17,9 @@ import json
 import logging
 import os
 from pathlib import Path
-import sys
+import signal
 import tempfile
+import threading
 import time
 import uuid
 
@@ -173,10 +174,19 @@ def _local_cluster(n_workers=None):
     # allocations about twice as slow in workers (measured); keep glibc's default
     environ = {k: v for k, v in dask.config.get("distributed.nanny.pre-spawn-environ").items()
                if k != "MALLOC_TRIM_THRESHOLD_"}
-    with dask.config.set({"distributed.nanny.pre-spawn-environ": environ}):
-        cluster = LocalCluster(n_workers=n_workers or _cpu_count(), threads_per_worker=1,
-                               processes=True, dashboard_address=":0" if _has_bokeh() else None,
-                               silence_logs=logging.CRITICAL)
+    # the worker processes start with SIGINT ignored (inherited): Ctrl-C in a terminal
+    # reaches the whole process group, and only this process must answer it
+    main = threading.current_thread() is threading.main_thread()
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None
+    try:
+        with dask.config.set({"distributed.nanny.pre-spawn-environ": environ}):
+            cluster = LocalCluster(n_workers=n_workers or _cpu_count(), threads_per_worker=1,
+                                   processes=True,
+                                   dashboard_address=":0" if _has_bokeh() else None,
+                                   silence_logs=logging.CRITICAL)
+    finally:
+        if main:
+            signal.signal(signal.SIGINT, previous)
     try:
         with Client(cluster) as client:
             yield client
@@ -249,13 +259,14 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
     n_shells = len(shells)
     shells_done = 0
     progress.start("loading paths")
-    progress.update("relaxation paths", 0, note="0 paths")
 
     def relax_note():
         note = f"{tally.relaxations_computed} paths solved"
         if tally.relaxations_reused:
             note += f", {tally.relaxations_reused} kept from an earlier run"
         return note
+
+    progress.update("relaxation paths", 0, note=relax_note())
 
     def close(job):
         nonlocal shells_done
@@ -352,13 +363,17 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
             done, _ = wait(list(pending), timeout=1.0, return_when="FIRST_COMPLETED")
         except TimeoutError:
             done = set()
+        stuck = False
         for f in done:
             pending.discard(f)
             if f in owner:
                 if f.status in ("lost", "cancelled") and external:
                     pending.add(f)          # decided below: the scheduler may be gone
+                    stuck = True
                     continue
                 arrived(f)
+        if stuck:
+            time.sleep(0.5)
         if external:
             if client.status == "running" and not any(f.status == "cancelled" for f in pending):
                 unreachable_since = None

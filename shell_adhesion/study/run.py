@@ -13,6 +13,8 @@ from concurrent.futures import CancelledError
 from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
 import hashlib
+import importlib
+import importlib.util
 import json
 import logging
 import os
@@ -195,11 +197,7 @@ def _local_cluster(n_workers=None):
 
 
 def _has_bokeh() -> bool:
-    try:
-        import bokeh  # noqa: F401  (the optional `dashboard` extra)
-    except ImportError:
-        return False
-    return True
+    return importlib.util.find_spec("bokeh") is not None   # the optional `dashboard` extra
 
 
 # -- computing the missing path sets -----------------------------------------------------
@@ -266,7 +264,6 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
             note += f", {tally.relaxations_reused} kept from an earlier run"
         return note
 
-    progress.update("relaxation paths", 0, note=relax_note())
 
     def close(job):
         nonlocal shells_done
@@ -446,7 +443,7 @@ def execute(study, out=None, catalogue=None, scheduler=None, progress=True, work
 def _quiet_dask():
     """dask.distributed's own log lines (its tracebacks of a lost connection) are not
     shown: the run reports what happened in one line."""
-    import distributed  # noqa: F401  (its import configures its loggers)
+    importlib.import_module("distributed")      # its import configures its loggers
     names = ["distributed"] + [n for n in logging.root.manager.loggerDict
                                if n.startswith("distributed.")]
     loggers = [logging.getLogger(n) for n in names]

@@ -27,6 +27,7 @@ import uuid
 
 from shell_adhesion import solver
 from shell_adhesion.catalogue import Catalogue, default_dir
+from shell_adhesion.catalogue.atomic import clean_temporaries
 from shell_adhesion.catalogue.store import INDEX
 from shell_adhesion.solver.case import (loading_views, pathset_of, relaxation_starts,
                                         relaxation_task, solve_loading)
@@ -460,6 +461,7 @@ def _quiet_dask():
 def _execute(plan, out_dir, output, catalogue, scheduler, client, show, workers, t0):
     study = plan.study
     out_dir.mkdir(parents=True, exist_ok=True)
+    clean_temporaries(out_dir)          # left by a killed run (the catalogue cleans its own)
     cat = Catalogue(catalogue)
     tally = Tally()
     run_id = None

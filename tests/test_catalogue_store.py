@@ -211,3 +211,20 @@ print(len(list_entries({str(tmp_path)!r})))
                          text=True, timeout=120)
     assert out.returncode == 0, out.stderr
     assert out.stdout.strip() == "1"
+
+
+def test_temporaries_of_dead_writers_are_removed_on_open(tmp_path):
+    import os
+    import subprocess
+    import sys
+    from shell_adhesion.catalogue.atomic import _host
+    dead = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"],
+                          capture_output=True, text=True, timeout=60).stdout.strip()
+    (tmp_path / "pathsets").mkdir()
+    orphan = tmp_path / "pathsets" / f"x.nc.tmp-{_host()}-{dead}-abc"
+    mine = tmp_path / "pathsets" / f"y.nc.tmp-{_host()}-{os.getpid()}-abc"
+    other = tmp_path / "pathsets" / "z.nc.tmp-otherhost-1-abc"        # recent: kept
+    for p in (orphan, mine, other):
+        p.write_bytes(b"partial")
+    Catalogue(tmp_path).close()
+    assert not orphan.exists() and mine.exists() and other.exists()

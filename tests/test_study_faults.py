@@ -264,3 +264,23 @@ def test_lost_worker_same_results(reference, dask_cluster, tmp_path):
         kill_group(proc)
     assert code == 0, err
     same_cube(load(out / "faults.nc"), reference.dataset)
+
+
+def test_ctrl_c_ends_in_one_line(tmp_path):
+    """SIGINT to the run's process group (Ctrl-C in a terminal): exit 130, one line saying
+    what is kept, no cube."""
+    cat, out = tmp_path / "cat", tmp_path / "results"
+    proc = cli(study_file(tmp_path), "--out", out, "--catalogue", cat, "--workers", "1",
+               "--quiet")
+    try:
+        wait_for_parts(cat, proc, 1)
+        kill_group(proc, signal.SIGINT)
+        code, text, err = finish(proc, timeout=120)
+    finally:
+        kill_group(proc)
+    assert code == 130, err
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and "Traceback" not in err, err
+    assert lines[0].startswith("shell-adhesion: interrupted: ")
+    assert "relaxation paths finished and are kept" in lines[0] and "run again" in lines[0]
+    assert not (out / "faults.nc").exists() and parts(cat) >= 1

@@ -10,7 +10,7 @@ import time
 import xarray as xr
 
 from shell_adhesion.catalogue import Catalogue, list_entries
-from shell_adhesion.study.run import run, summary
+from shell_adhesion.study.run import execute, summary
 
 from conftest import ENV, REPO
 
@@ -57,8 +57,8 @@ def test_killed_run_resumes(tmp_path):
     cat, out = tmp_path / "cat", tmp_path / "results"
     log = open(tmp_path / "run.log", "w")
     proc = subprocess.Popen(
-        [sys.executable, "-m", "shell_adhesion.study.run", str(study), "--out", str(out), "--catalogue", str(cat),
-         "--workers", "1"],
+        [sys.executable, "-m", "shell_adhesion", "run", str(study), "--out", str(out),
+         "--catalogue", str(cat), "--workers", "1"],
         cwd=REPO, env=ENV, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
     try:
         deadline = time.time() + 180
@@ -81,19 +81,19 @@ def test_killed_run_resumes(tmp_path):
     stored = ok_rows(cat)
     assert len(stored) == 1, "the kill came too late to interrupt the second path set"
     assert not (out / "resume.nc").exists()
-    assert "FE tasks" in (tmp_path / "run.log").read_text()        # the progress bar
+    assert "loading paths" in (tmp_path / "run.log").read_text()   # the progress lines
     with Catalogue(cat) as c:
         killed = c.runs()[-1]
     assert killed["finished"] is None                               # the run never ended
 
-    again = run(study, out, catalogue_dir=cat, progress=False)
+    again = execute(study, out, catalogue=cat, progress=False)
     assert again.exit_code == 0
     assert again.reused == [stored[0]["fingerprint"]] and len(again.computed) == 1
     assert again.discarded == []
     assert "2 needed, 1 computed, 1 reused, 0 failed" in summary(again)
 
-    reference = run(study, tmp_path / "reference", catalogue_dir=tmp_path / "cat2",
-                    progress=False)
+    reference = execute(study, tmp_path / "reference", catalogue=tmp_path / "cat2",
+                        progress=False)
     assert reference.exit_code == 0 and len(reference.computed) == 2
     resumed, cold = load(again.output), load(reference.output)
     assert (resumed["status"] == "ok").all()

@@ -14,6 +14,7 @@ import xarray as xr
 
 from shell_adhesion.catalogue import Catalogue, list_entries
 from shell_adhesion.solver.path import Settings
+from shell_adhesion.solver.pathset_dataset import from_dataset
 from shell_adhesion.study import dataset
 from shell_adhesion.study.plan import restrict
 from shell_adhesion.study.run import execute, summary
@@ -225,7 +226,8 @@ def test_dataset_conventions_and_round_trip(local, tmp_path):
     # the same cube built in memory equals what was read back from netCDF
     plan = outcome.plan
     with Catalogue(cat) as c:
-        entry, ps = c.fetch(plan.shells[0].key)
+        entry, stored = c.fetch(plan.shells[0].key)
+    ps = from_dataset(stored)
     shell = plan.shells[0]
     served = {(shell.t_over_R, shell.h_over_R): (entry.fingerprint, restrict(ps, 0.1))}
     built = dataset.build(plan, served, {}, history=a["history"])

@@ -27,7 +27,6 @@ import os
 from pathlib import Path
 import socket
 import sqlite3
-import time
 
 import xarray as xr
 

@@ -13,17 +13,21 @@ from concurrent.futures import CancelledError
 from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
 import hashlib
+import importlib
+import importlib.util
 import json
 import logging
 import os
 from pathlib import Path
-import sys
+import signal
 import tempfile
+import threading
 import time
 import uuid
 
 from shell_adhesion import solver
 from shell_adhesion.catalogue import Catalogue, default_dir
+from shell_adhesion.catalogue.atomic import clean_temporaries
 from shell_adhesion.catalogue.store import INDEX
 from shell_adhesion.solver.case import (loading_views, pathset_of, relaxation_starts,
                                         relaxation_task, solve_loading)
@@ -173,10 +177,19 @@ def _local_cluster(n_workers=None):
     # allocations about twice as slow in workers (measured); keep glibc's default
     environ = {k: v for k, v in dask.config.get("distributed.nanny.pre-spawn-environ").items()
                if k != "MALLOC_TRIM_THRESHOLD_"}
-    with dask.config.set({"distributed.nanny.pre-spawn-environ": environ}):
-        cluster = LocalCluster(n_workers=n_workers or _cpu_count(), threads_per_worker=1,
-                               processes=True, dashboard_address=":0" if _has_bokeh() else None,
-                               silence_logs=logging.CRITICAL)
+    # the worker processes start with SIGINT ignored (inherited): Ctrl-C in a terminal
+    # reaches the whole process group, and only this process must answer it
+    main = threading.current_thread() is threading.main_thread()
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None
+    try:
+        with dask.config.set({"distributed.nanny.pre-spawn-environ": environ}):
+            cluster = LocalCluster(n_workers=n_workers or _cpu_count(), threads_per_worker=1,
+                                   processes=True,
+                                   dashboard_address=":0" if _has_bokeh() else None,
+                                   silence_logs=logging.CRITICAL)
+    finally:
+        if main:
+            signal.signal(signal.SIGINT, previous)
     try:
         with Client(cluster) as client:
             yield client
@@ -185,11 +198,7 @@ def _local_cluster(n_workers=None):
 
 
 def _has_bokeh() -> bool:
-    try:
-        import bokeh  # noqa: F401  (the optional `dashboard` extra)
-    except ImportError:
-        return False
-    return True
+    return importlib.util.find_spec("bokeh") is not None   # the optional `dashboard` extra
 
 
 # -- computing the missing path sets -----------------------------------------------------
@@ -249,13 +258,13 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
     n_shells = len(shells)
     shells_done = 0
     progress.start("loading paths")
-    progress.update("relaxation paths", 0, note="0 paths")
 
     def relax_note():
         note = f"{tally.relaxations_computed} paths solved"
         if tally.relaxations_reused:
             note += f", {tally.relaxations_reused} kept from an earlier run"
         return note
+
 
     def close(job):
         nonlocal shells_done
@@ -352,13 +361,17 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
             done, _ = wait(list(pending), timeout=1.0, return_when="FIRST_COMPLETED")
         except TimeoutError:
             done = set()
+        stuck = False
         for f in done:
             pending.discard(f)
             if f in owner:
                 if f.status in ("lost", "cancelled") and external:
                     pending.add(f)          # decided below: the scheduler may be gone
+                    stuck = True
                     continue
                 arrived(f)
+        if stuck:
+            time.sleep(0.5)
         if external:
             if client.status == "running" and not any(f.status == "cancelled" for f in pending):
                 unreachable_since = None
@@ -431,7 +444,7 @@ def execute(study, out=None, catalogue=None, scheduler=None, progress=True, work
 def _quiet_dask():
     """dask.distributed's own log lines (its tracebacks of a lost connection) are not
     shown: the run reports what happened in one line."""
-    import distributed  # noqa: F401  (its import configures its loggers)
+    importlib.import_module("distributed")      # its import configures its loggers
     names = ["distributed"] + [n for n in logging.root.manager.loggerDict
                                if n.startswith("distributed.")]
     loggers = [logging.getLogger(n) for n in names]
@@ -448,6 +461,7 @@ def _quiet_dask():
 def _execute(plan, out_dir, output, catalogue, scheduler, client, show, workers, t0):
     study = plan.study
     out_dir.mkdir(parents=True, exist_ok=True)
+    clean_temporaries(out_dir)          # left by a killed run (the catalogue cleans its own)
     cat = Catalogue(catalogue)
     tally = Tally()
     run_id = None

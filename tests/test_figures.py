@@ -175,3 +175,101 @@ def test_a_base_without_some_factors_uses_the_middle_of_their_axis(ds, tmp_path)
     written, skipped = figures.write_figures(grid, tmp_path / "f", formats=("png",))
     assert skipped == {} and len(written) == len(figures.FIGURES)
     assert len(write_tables(grid, tmp_path / "t")) == 7
+
+
+# figures for people: the caller's Axes, viridis, legends that mean something, >= 100 dpi
+
+PANELS = {figures.fig_von_mises: 2, figures.fig_profiles: 2, figures.fig_load_relaxation: 1,
+          figures.fig_energy: 4, figures.fig_contact_radius: 4, figures.fig_pull_off: 4}
+
+
+@pytest.mark.parametrize("draw", list(PANELS), ids=lambda f: f.__name__)
+def test_every_figure_draws_into_the_callers_axes(ds, draw):
+    from matplotlib.figure import Figure
+    n = PANELS[draw]
+    fig = Figure()
+    given = fig.subplots(1, n, squeeze=False)[0]
+    keyword = "ax" if n == 1 else "axes"
+    got = draw(ds, **{keyword: given[0] if n == 1 else given})
+    assert list(np.ravel(got)) == list(given)
+    assert all(ax.has_data() for ax in given)
+    with pytest.raises(ValueError, match=f"needs {n} Axes"):
+        draw(ds, **{keyword: Figure().subplots(1, n + 1)})
+    own = draw(ds)                                     # a new Figure, no pyplot
+    assert len(np.ravel(own)) == n and figures.figure_of(own) is not fig
+
+
+def _drawn(artist):
+    """Independent of figures._drawn: a line with two finite points and a line style, or
+    one with a marker; a collection with paths."""
+    if hasattr(artist, "get_xydata"):
+        xy = artist.get_xydata()
+        n = int(np.isfinite(xy).all(axis=1).sum())
+        return (artist.get_linestyle() not in ("None", "") and n >= 2) or (
+            artist.get_marker() not in ("None", "", None) and n >= 1)
+    return len(artist.get_paths()) > 0
+
+
+def test_no_legend_entry_without_a_line(ds):
+    one_gamma = ds.sel(gamma=[30.0])          # single points: markers make them visible
+    drawn = [(name, ax) for name, draw in figures.FIGURES.items() for ax in np.ravel(draw(ds))]
+    drawn += [("fig6b_one_gamma", ax) for ax in figures.fig_pull_off(one_gamma)]
+    legends = 0
+    for name, ax in drawn:
+        legend = ax.get_legend()
+        if legend is None:
+            continue
+        legends += 1
+        shown = {t.get_text() for t in legend.get_texts()}
+        handles = dict(zip(*reversed(ax.get_legend_handles_labels())))
+        assert shown <= set(handles), name
+        for label in shown:
+            assert _drawn(handles[label]), (name, label)
+    assert legends >= 12
+    # a dashed line through one point shows nothing: no entry for it
+    from matplotlib.figure import Figure
+    ax = Figure().subplots()
+    ax.plot([1.0], [1.0], "k--", label="invisible")
+    ax.plot([0.0, 1.0], [0.0, 1.0], label="visible")
+    figures._legend(ax)
+    assert [t.get_text() for t in ax.get_legend().get_texts()] == ["visible"]
+
+
+def test_colour_maps_are_perceptually_uniform(ds):
+    from matplotlib import colormaps
+    assert figures.CMAP in ("viridis", "cividis", "plasma", "inferno", "magma")
+    fig = figures.figure_of(figures.fig_von_mises(ds))
+    meshes = [c for ax in fig.axes for c in ax.collections if isinstance(c, TriMesh)]
+    assert meshes and all(m.get_cmap().name == figures.CMAP for m in meshes)
+    cmap = colormaps[figures.CMAP]
+    viridis = cmap(np.linspace(0, 1, 256))[:, :3]
+    for ax in figures.fig_contact_radius(ds):
+        for line in labelled_lines(ax):
+            rgb = np.array(line.get_color())[:3]
+            assert np.min(np.abs(viridis - rgb).sum(axis=1)) < 1e-6
+
+
+def test_fig5_zooms_on_the_pull_off_state(ds):
+    top, top_zoom, bottom, bottom_zoom = figures.fig_energy(ds)
+    for main, zoom in ((top, top_zoom), (bottom, bottom_zoom)):
+        star = [l for l in main.get_lines() if l.get_marker() == "*"][0]
+        zstar = [l for l in zoom.get_lines() if l.get_marker() == "*"][0]
+        np.testing.assert_array_equal(star.get_xydata(), zstar.get_xydata())
+        (A0, U0), = star.get_xydata()
+        lo, hi = zoom.get_xlim()
+        assert lo < A0 < hi and hi - lo == pytest.approx(2 * figures.ZOOM * A0)
+        zlo, zhi = zoom.get_ylim()
+        mlo, mhi = main.get_ylim()
+        assert zlo < U0 < zhi and (zhi - zlo) < 0.1 * (mhi - mlo)     # a real zoom
+        assert units_on(zoom, "mm$^2$", "mJ") and "zoom" in zoom.get_title()
+
+
+def test_png_figures_at_100_dpi_or_more(ds, small_study, tmp_path):
+    from PIL import Image
+    written, _ = figures.write_figures(ds, tmp_path, formats=("png",))
+    stem = small_study.with_suffix("")
+    run_pngs = list(stem.with_name(stem.name + "_figures").glob("*.png"))
+    assert len(run_pngs) == len(written) == len(figures.FIGURES)
+    for png in written + run_pngs:
+        with Image.open(png) as im:
+            assert min(im.info["dpi"]) >= figures.MIN_DPI, png

@@ -1,7 +1,7 @@
 """The study's results as one labelled xarray Dataset written as netCDF (the only module
 that knows this layout).
 
-Dimensions ``C10`` (MPa), ``t_over_R``, ``h_over_R``, ``gamma`` (J m-2): a full cube over
+Dimensions ``C10`` (MPa), ``t_over_R``, ``h_over_R``, ``gamma`` (J/m^2): a full cube over
 the union of the study's values.  Only the requested points (the base, each sweep line,
 the grid) are evaluated; the others are NaN with ``status`` "not requested".  Units:
 lengths mm, forces N, energies mJ (N mm); P > 0 compression, delta > 0 approach.
@@ -368,8 +368,9 @@ def study_of(ds: xr.Dataset) -> dict:
             out[k] = float(out[k])
     for group, prefix in _GROUPS.items():
         values = {f: a[prefix + f] for f in FACTORS if prefix + f in a}
-        out[group] = ({f: float(v) for f, v in values.items()} if group == "base" else
-                      {f: [float(x) for x in np.atleast_1d(v)] for f, v in values.items()})
+        if values:          # the study file leaves out an empty group
+            out[group] = ({f: float(v) for f, v in values.items()} if group == "base" else
+                          {f: [float(x) for x in np.atleast_1d(v)] for f, v in values.items()})
     out["outputs"] = {f.name: bool(a[_OUTPUTS + f.name]) for f in fields(Outputs)
                       if _OUTPUTS + f.name in a}
     return {k: out[k] for k in KEYS if k in out}

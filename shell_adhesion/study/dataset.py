@@ -24,8 +24,9 @@ lengths mm, forces N, energies mJ (N mm); P > 0 compression, delta > 0 approach.
 Coordinates: the dimension coordinates keep DESIGN.md's names (C10, t_over_R, h_over_R,
 gamma); non-index companions carry the unit in their name (C10_MPa, gamma_J_m2, t_mm, h_mm,
 gamma_hat) and so do the curves' coordinates (a_eq_mm, loading_delta_mm, relaxation_a_mm,
-relaxation_delta_mm), so that ``ds.P_star.sel(t_over_R=0.15).plot(x="gamma_J_m2")`` and
-``ds.P_eq.sel(...).plot(x="a_eq_mm")`` work.  Unit strings are read by UDUNITS (CF) and by
+relaxation_delta_mm), so that ``ds.P_star.sel(C10=0.3, t_over_R=0.15, h_over_R=1).plot(
+x="gamma_J_m2")`` and ``ds.P_eq.sel(C10=0.3, t_over_R=0.15, h_over_R=1, gamma=30).plot(
+x="a_eq_mm")`` work.  Unit strings are read by UDUNITS (CF) and by
 pint's default registry alike.  The study is stored as plain attributes (R_mm, base_C10_MPa,
 sweep_gamma_J_m2, ..., see `study_attrs`), from which `study_of` rebuilds the study file's
 dictionary.

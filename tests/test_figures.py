@@ -36,8 +36,8 @@ def test_the_cube_keeps_what_the_figures_need(ds):
     assert set(ds["profile_stage"].sel(shell).values) == {"loading", "relaxation"}
     assert (ds["map_von_mises"].sel(shell) >= 0).all()
     # the loading stress map is the last loading state
-    last = int(ds["loading_delta"].sel(shell).notnull().sum()) - 1
-    assert float(ds["map_delta"].sel(shell)[0]) == float(ds["loading_delta"].sel(shell)[last])
+    last = int(ds["loading_delta_mm"].sel(shell).notnull().sum()) - 1
+    assert float(ds["map_delta"].sel(shell)[0]) == float(ds["loading_delta_mm"].sel(shell)[last])
 
 
 def test_energy_surface_from_the_cube_gives_the_stored_pull_off(ds):
@@ -51,8 +51,7 @@ def test_energy_surface_from_the_cube_gives_the_stored_pull_off(ds):
 
 
 def test_fig3_profiles(ds):
-    fig = figures.fig_profiles(ds)
-    left, right = fig.axes
+    left, right = figures.fig_profiles(ds)
     stage = ds["profile_stage"].sel(t_over_R=0.15, h_over_R=1.0).values
     assert len(labelled_lines(left)) == np.sum(stage == "loading") >= 5
     assert len(labelled_lines(right)) == np.sum(stage == "relaxation") >= 5
@@ -64,14 +63,13 @@ def test_fig3_profiles(ds):
 
 
 def test_fig4_load_relaxation(ds):
-    fig = figures.fig_load_relaxation(ds)
-    (ax,) = fig.axes
+    ax = figures.fig_load_relaxation(ds)
     assert units_on(ax, "mm", "N")
     lines = ax.get_lines()
     x, y = lines[0].get_data()
     shell = dict(t_over_R=0.15, h_over_R=1.0)
     np.testing.assert_array_equal(y, ds["loading_P"].sel(C10=0.3, **shell).dropna("loading_state"))
-    n_rel = int(ds["relaxation_a"].sel(shell).notnull().sum())
+    n_rel = int(ds["relaxation_a_mm"].sel(shell).notnull().sum())
     curves = [l for l in lines if len(l.get_xdata()) > 2]
     assert len(curves) == 1 + min(8, n_rel)     # loading and the relaxation paths shown
     fills = [c for c in ax.collections if isinstance(c, PolyCollection)]
@@ -79,8 +77,7 @@ def test_fig4_load_relaxation(ds):
 
 
 def test_fig5_energy_families(ds):
-    fig = figures.fig_energy(ds, n_curves=6)
-    top, bottom = fig.axes
+    top, top_zoom, bottom, bottom_zoom = figures.fig_energy(ds, n_curves=6)
     for ax in (top, bottom):
         assert units_on(ax, "mm$^2$", "mJ")
         assert any("equilibrium" in l.get_label() for l in ax.get_lines())
@@ -93,9 +90,9 @@ def test_fig5_energy_families(ds):
 
 
 def test_fig6a_contact_radius_per_sweep(ds):
-    fig = figures.fig_contact_radius(ds)
-    assert len(fig.axes) == 4
-    for ax, (dim, _) in zip(fig.axes, figures.SWEEPS):
+    axes = figures.fig_contact_radius(ds)
+    assert len(axes) == 4
+    for ax, (dim, _) in zip(axes, figures.SWEEPS):
         values = along(ds, "P_star", dim)
         assert units_on(ax, "N", "mm")
         assert len(labelled_lines(ax)) == values.size
@@ -104,19 +101,19 @@ def test_fig6a_contact_radius_per_sweep(ds):
 
 
 def test_fig6b_pull_off_with_jkr_and_eta(ds):
-    fig = figures.fig_pull_off(ds)
-    assert len(fig.axes) == 4
-    for ax, (dim, _) in zip(fig.axes, figures.SWEEPS):
+    axes = figures.fig_pull_off(ds)
+    assert len(axes) == 4
+    for ax, (dim, _) in zip(axes, figures.SWEEPS):
         ours, jkr, law = ax.get_lines()
         np.testing.assert_array_equal(ours.get_ydata(), -along(ds, "P_star", dim).values)
         assert "[N]" in ax.get_ylabel() and "JKR" in jkr.get_label() and "eta" in law.get_label()
-    gamma_ax = fig.axes[3]
+    gamma_ax = axes[3]
     g = gamma_ax.get_lines()[1].get_xdata()
     np.testing.assert_allclose(gamma_ax.get_lines()[1].get_ydata(), 1.5 * np.pi * 20.0 * g * 1e-3)
 
 
 def test_von_mises_map(ds):
-    fig = figures.fig_von_mises(ds)
+    fig = figures.figure_of(figures.fig_von_mises(ds))
     maps = [ax for ax in fig.axes if any(isinstance(c, TriMesh) for c in ax.collections)]
     assert len(maps) == 2
     for ax in maps:
@@ -171,12 +168,108 @@ def test_plot_command(small_study, tmp_path, forbid_fe, capsys):
 
 def test_a_base_without_some_factors_uses_the_middle_of_their_axis(ds, tmp_path):
     """A grid-only factor has no base value: figures and tables still come out."""
-    import json
     from shell_adhesion.study.products import write_tables
-    study = json.loads(ds.attrs["study"])
-    del study["base"]["C10_MPa"], study["base"]["gamma_J_m2"]
-    grid = ds.assign_attrs(study=json.dumps(study))
+    grid = ds.copy()
+    del grid.attrs["base_C10_MPa"], grid.attrs["base_gamma_J_m2"]
     assert base_point(grid) == dict(C10=0.3, t_over_R=0.15, h_over_R=1.0, gamma=30.0)
     written, skipped = figures.write_figures(grid, tmp_path / "f", formats=("png",))
     assert skipped == {} and len(written) == len(figures.FIGURES)
     assert len(write_tables(grid, tmp_path / "t")) == 7
+
+
+# figures for people: the caller's Axes, viridis, legends that mean something, >= 100 dpi
+
+PANELS = {figures.fig_von_mises: 2, figures.fig_profiles: 2, figures.fig_load_relaxation: 1,
+          figures.fig_energy: 4, figures.fig_contact_radius: 4, figures.fig_pull_off: 4}
+
+
+@pytest.mark.parametrize("draw", list(PANELS), ids=lambda f: f.__name__)
+def test_every_figure_draws_into_the_callers_axes(ds, draw):
+    from matplotlib.figure import Figure
+    n = PANELS[draw]
+    fig = Figure()
+    given = fig.subplots(1, n, squeeze=False)[0]
+    keyword = "ax" if n == 1 else "axes"
+    got = draw(ds, **{keyword: given[0] if n == 1 else given})
+    assert list(np.ravel(got)) == list(given)
+    assert all(ax.has_data() for ax in given)
+    with pytest.raises(ValueError, match=f"needs {n} Axes"):
+        draw(ds, **{keyword: Figure().subplots(1, n + 1)})
+    own = draw(ds)                                     # a new Figure, no pyplot
+    assert len(np.ravel(own)) == n and figures.figure_of(own) is not fig
+
+
+def _drawn(artist):
+    """Independent of figures._drawn: a line with two finite points and a line style, or
+    one with a marker; a collection with paths."""
+    if hasattr(artist, "get_xydata"):
+        xy = artist.get_xydata()
+        n = int(np.isfinite(xy).all(axis=1).sum())
+        return (artist.get_linestyle() not in ("None", "") and n >= 2) or (
+            artist.get_marker() not in ("None", "", None) and n >= 1)
+    return len(artist.get_paths()) > 0
+
+
+def test_no_legend_entry_without_a_line(ds):
+    one_gamma = ds.sel(gamma=[30.0])          # single points: markers make them visible
+    drawn = [(name, ax) for name, draw in figures.FIGURES.items() for ax in np.ravel(draw(ds))]
+    drawn += [("fig6b_one_gamma", ax) for ax in figures.fig_pull_off(one_gamma)]
+    legends = 0
+    for name, ax in drawn:
+        legend = ax.get_legend()
+        if legend is None:
+            continue
+        legends += 1
+        shown = {t.get_text() for t in legend.get_texts()}
+        handles = dict(zip(*reversed(ax.get_legend_handles_labels())))
+        assert shown <= set(handles), name
+        for label in shown:
+            assert _drawn(handles[label]), (name, label)
+    assert legends >= 12
+    # a dashed line through one point shows nothing: no entry for it
+    from matplotlib.figure import Figure
+    ax = Figure().subplots()
+    ax.plot([1.0], [1.0], "k--", label="invisible")
+    ax.plot([0.0, 1.0], [0.0, 1.0], label="visible")
+    figures._legend(ax)
+    assert [t.get_text() for t in ax.get_legend().get_texts()] == ["visible"]
+
+
+def test_colour_maps_are_perceptually_uniform(ds):
+    from matplotlib import colormaps
+    assert figures.CMAP in ("viridis", "cividis", "plasma", "inferno", "magma")
+    fig = figures.figure_of(figures.fig_von_mises(ds))
+    meshes = [c for ax in fig.axes for c in ax.collections if isinstance(c, TriMesh)]
+    assert meshes and all(m.get_cmap().name == figures.CMAP for m in meshes)
+    cmap = colormaps[figures.CMAP]
+    viridis = cmap(np.linspace(0, 1, 256))[:, :3]
+    for ax in figures.fig_contact_radius(ds):
+        for line in labelled_lines(ax):
+            rgb = np.array(line.get_color())[:3]
+            assert np.min(np.abs(viridis - rgb).sum(axis=1)) < 1e-6
+
+
+def test_fig5_zooms_on_the_pull_off_state(ds):
+    top, top_zoom, bottom, bottom_zoom = figures.fig_energy(ds)
+    for main, zoom in ((top, top_zoom), (bottom, bottom_zoom)):
+        star = [l for l in main.get_lines() if l.get_marker() == "*"][0]
+        zstar = [l for l in zoom.get_lines() if l.get_marker() == "*"][0]
+        np.testing.assert_array_equal(star.get_xydata(), zstar.get_xydata())
+        (A0, U0), = star.get_xydata()
+        lo, hi = zoom.get_xlim()
+        assert lo < A0 < hi and hi - lo == pytest.approx(2 * figures.ZOOM * A0)
+        zlo, zhi = zoom.get_ylim()
+        mlo, mhi = main.get_ylim()
+        assert zlo < U0 < zhi and (zhi - zlo) < 0.1 * (mhi - mlo)     # a real zoom
+        assert units_on(zoom, "mm$^2$", "mJ") and "zoom" in zoom.get_title()
+
+
+def test_png_figures_at_100_dpi_or_more(ds, small_study, tmp_path):
+    from PIL import Image
+    written, _ = figures.write_figures(ds, tmp_path, formats=("png",))
+    stem = small_study.with_suffix("")
+    run_pngs = list(stem.with_name(stem.name + "_figures").glob("*.png"))
+    assert len(run_pngs) == len(written) == len(figures.FIGURES)
+    for png in written + run_pngs:
+        with Image.open(png) as im:
+            assert min(im.info["dpi"]) >= figures.MIN_DPI, png

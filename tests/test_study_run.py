@@ -145,7 +145,7 @@ def test_new_c10_and_gamma_compute_nothing(local, tmp_path):
     assert more.counts["ok"] == 16
     big = load(more.output)
     old = big.sel(C10=ds["C10"], gamma=ds["gamma"])
-    for v in ("P_star", "delta_star", "a_star", "P_dagger", "a0", "eta", "a_eq", "P_eq"):
+    for v in ("P_star", "delta_star", "a_star", "P_dagger", "a0", "eta", "a_eq_mm", "P_eq"):
         xr.testing.assert_identical(old[v], ds[v])
 
 
@@ -173,7 +173,7 @@ def test_sweeps_leave_unrequested_points_empty(local, tmp_path):
     assert out.computed == [] and out.counts["ok"] == 3 and out.counts["not requested"] == 1
     off = ds.sel(C10=0.2, gamma=20.0)
     assert (off["status"] == "not requested").all()
-    assert np.isnan(off["P_star"]).all() and np.isnan(off["a_eq"]).all()
+    assert np.isnan(off["P_star"]).all() and np.isnan(off["a_eq_mm"]).all()
 
 
 def test_point_outside_the_paths_is_recorded(local, tmp_path, capsys):
@@ -211,16 +211,16 @@ def test_solver_failure_is_recorded(scheduler, tmp_path):
 def test_dataset_conventions_and_round_trip(local, tmp_path):
     outcome, _, cat, ds = local
     assert ds["P_star"].dims == ("C10", "t_over_R", "h_over_R", "gamma")
-    assert ds["a_eq"].dims[-1] == "point"
+    assert ds["a_eq_mm"].dims[-1] == "point"
     assert ds["loading_P"].dims == ("C10", "t_over_R", "h_over_R", "loading_state")
     for name, v in ds.variables.items():
         assert "units" in v.attrs and "long_name" in v.attrs, name
     names = ("C10", "gamma", "P_star", "a_star", "loading_U", "R")
     units = {k: ds[k].attrs["units"] for k in names}
-    assert units == dict(C10="MPa", gamma="J m-2", P_star="N", a_star="mm", loading_U="mJ", R="mm")
+    assert units == dict(C10="MPa", gamma="J/m^2", P_star="N", a_star="mm", loading_U="mJ", R="mm")
     a = ds.attrs
     assert a["Conventions"] == "CF-1.8"
-    for k in ("title", "history", "source", "solver_version", "solver_settings"):
+    for k in ("title", "history", "source", "solver_version", "solver_max_iter"):
         assert a[k]
     assert (a["mesh"], a["interface"], a["solver_tol"]) == ("coarse", "no_slip", Settings().tol)
     # the same cube built in memory equals what was read back from netCDF
@@ -243,5 +243,5 @@ def test_outputs_can_leave_out_the_curves(local, tmp_path):
     lean = load(execute(study, tmp_path / "results", scheduler=UNREACHABLE, catalogue=cat,
                     progress=False).output)
     assert "point" not in lean.dims and "loading_state" not in lean.dims
-    assert "a_eq" not in lean and "loading_P" not in lean
+    assert "a_eq_mm" not in lean and "loading_P" not in lean
     xr.testing.assert_identical(lean["P_star"], ds["P_star"])

@@ -7,7 +7,6 @@ m (N per J/m^2).  P < 0 is tension, so pull-off forces are compared by magnitude
 Intervals are 95 % (two-sided, Student t).
 """
 from dataclasses import dataclass
-import json
 import math
 from pathlib import Path
 
@@ -19,11 +18,8 @@ from scipy.interpolate import CubicSpline
 from shell_adhesion.solver.geometry import InputError
 from shell_adhesion.solver.theory import jkr_P_star_N, shell_law_scale_N
 
-from .dataset import DIMS
+from .dataset import DIMS, base_attr, study_of
 
-# the study file's names of the cube's dimensions
-STUDY_KEYS = {"C10": "C10_MPa", "t_over_R": "t_over_R", "h_over_R": "h_over_R",
-              "gamma": "gamma_J_m2"}
 
 # relative uncertainty of P* from the mesh: the measured change of P* is 0.32 % from coarse
 # to default and 0.18 % from default to fine (README; test_convergence.py's limit is 0.5 %);
@@ -42,7 +38,7 @@ EQ3_EXPONENTS = {"gamma": 4 / 3, "C10": -1 / 3, "t_mm": -2 / 3, "h_mm": 0.0}
 PAPER_SHELL = {"R_mm": 20.0, "C10": 0.3, "t_over_R": 0.15, "h_over_R": 1.0, "gamma": 30.0}
 
 _REQUIRED = ("P_star", "status", "eta")
-_UNITS_TEXT = {"J m-2": "J/m^2", "1": ""}
+_UNITS_TEXT = {"1": ""}
 
 
 class NotACube(InputError):
@@ -67,20 +63,17 @@ def open_results(path) -> xr.Dataset:
 
 
 def check_cube(ds: xr.Dataset) -> None:
-    """Raise NotACube unless `ds` has the cube's dimensions, variables and study record."""
+    """Raise NotACube unless `ds` has the cube's dimensions, variables and study record
+    (R_mm and the base values as numbers)."""
     missing = [d for d in DIMS if d not in ds.dims] + [v for v in _REQUIRED if v not in ds]
     if missing:
         raise NotACube("not a shell-adhesion results cube (missing " + ", ".join(missing) + ")")
     try:
-        base = json.loads(ds.attrs["study"])["base"]
-        [float(base[STUDY_KEYS[d]]) for d in DIMS]
+        [float(ds.attrs[a]) for a in ("R_mm", *(base_attr(d) for d in DIMS
+                                               if base_attr(d) in ds.attrs))]
     except (KeyError, TypeError, ValueError):
-        raise NotACube("not a shell-adhesion results cube (no study record with a base)") from None
-
-
-def study_of(ds: xr.Dataset) -> dict:
-    """The study definition stored with the cube (R_mm, base, sweeps, grid, mesh, ...)."""
-    return json.loads(ds.attrs["study"])
+        raise NotACube("not a shell-adhesion results cube (no study record: R_mm and "
+                       "base_* attributes)") from None
 
 
 def base_point(ds: xr.Dataset) -> dict:
@@ -88,8 +81,7 @@ def base_point(ds: xr.Dataset) -> dict:
 
     A factor the study's base leaves out (a grid-only factor) takes the middle value of
     its axis."""
-    base = study_of(ds)["base"]
-    return {d: float(base[STUDY_KEYS[d]]) if STUDY_KEYS[d] in base
+    return {d: float(ds.attrs[base_attr(d)]) if base_attr(d) in ds.attrs
             else float(ds[d].values[(ds.sizes[d] - 1) // 2]) for d in DIMS}
 
 
@@ -400,19 +392,19 @@ def _value(ds, var, **at):
 
 def _curve(ds, point):
     """The base point's equilibrium curve as (a, delta, P) arrays, mm and N, or None."""
-    if not all(v in ds for v in ("a_eq", "delta_eq", "P_eq")):
+    if not all(v in ds for v in ("a_eq_mm", "delta_eq", "P_eq")):
         return None
-    a, d, P = (_select(ds[v], **point).values for v in ("a_eq", "delta_eq", "P_eq"))
+    a, d, P = (_select(ds[v], **point).values for v in ("a_eq_mm", "delta_eq", "P_eq"))
     ok = np.isfinite(a) & np.isfinite(d) & np.isfinite(P)
     return (a[ok], d[ok], P[ok]) if ok.sum() >= 4 else None
 
 
 def _loading_at(ds, point, delta_mm):
     """(P [N], a [mm]) at delta on the base shell's loading curve, or None if not reached."""
-    if not all(v in ds for v in ("loading_delta", "loading_a", "loading_P")):
+    if not all(v in ds for v in ("loading_delta_mm", "loading_a", "loading_P")):
         return None
     shell = {d: point[d] for d in ("t_over_R", "h_over_R")}
-    d = _select(ds["loading_delta"], **shell).values
+    d = _select(ds["loading_delta_mm"], **shell).values
     a = _select(ds["loading_a"], **shell).values
     P = _select(ds["loading_P"], C10=point["C10"], **shell).values
     ok = np.isfinite(d) & np.isfinite(P) & np.isfinite(a)
@@ -426,11 +418,11 @@ def _loading_at(ds, point, delta_mm):
 def _held_P_at_zero(ds, point, a_mm):
     """P [N] at delta = 0 with the contact radius a held (relaxation curves, Fig. 2b),
     interpolated linearly in a between the two neighbouring paths; else why not (str)."""
-    if not all(v in ds for v in ("relaxation_a", "relaxation_delta", "relaxation_P")):
+    if not all(v in ds for v in ("relaxation_a_mm", "relaxation_delta_mm", "relaxation_P")):
         return "no relaxation curves"
     shell = {d: point[d] for d in ("t_over_R", "h_over_R")}
-    a = _select(ds["relaxation_a"], **shell).values
-    D = _select(ds["relaxation_delta"], **shell).values
+    a = _select(ds["relaxation_a_mm"], **shell).values
+    D = _select(ds["relaxation_delta_mm"], **shell).values
     P = _select(ds["relaxation_P"], C10=point["C10"], **shell).values
     # paths the energy method left out (the centre lifts, a free node touches) hold no clean
     # contact zone
@@ -496,7 +488,7 @@ def paper_comparison(ds: xr.Dataset) -> Comparison:
     loaded = _loading_at(ds, base, 5.0)
     if loaded is None:
         skipped.append("P and a at delta = 5 mm (Fig. 2a): the loading curve stops before 5 mm"
-                       if "loading_delta" in ds else
+                       if "loading_delta_mm" in ds else
                        "P and a at delta = 5 mm (Fig. 2a): no loading curves")
     else:
         rows.append(_row("P at delta = 5 mm, no adhesion", 14.67, loaded[0], "N",

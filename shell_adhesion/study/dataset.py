@@ -1,28 +1,40 @@
 """The study's results as one labelled xarray Dataset written as netCDF (the only module
 that knows this layout).
 
-Dimensions ``C10`` (MPa), ``t_over_R``, ``h_over_R``, ``gamma`` (J m-2): a full cube over
+Dimensions ``C10`` (MPa), ``t_over_R``, ``h_over_R``, ``gamma`` (J/m^2): a full cube over
 the union of the study's values.  Only the requested points (the base, each sweep line,
 the grid) are evaluated; the others are NaN with ``status`` "not requested".  Units:
 lengths mm, forces N, energies mJ (N mm); P > 0 compression, delta > 0 approach.
 
 - pull-off (C10, t_over_R, h_over_R, gamma): P_star, delta_star, a_star (fixed load),
   P_dagger, delta_dagger, a_dagger (fixed grips), a0 (P = 0), eta (eq. 3), status, reason;
-- equilibrium curves (..., point): a_eq, delta_eq, P_eq and stability flags, NaN-padded
-  along ``point`` (the points where G = gamma, increasing a);
-- loading curves (t_over_R, h_over_R, loading_state): loading_delta, loading_a, and with C10
-  (exact scaling, every C10 of the axis) loading_P and loading_U;
-- relaxation curves (t_over_R, h_over_R, relaxation[, relaxation_state]): relaxation_a,
-  relaxation_used, relaxation_delta, and with C10 relaxation_P and relaxation_U;
+- equilibrium curves (..., point): delta_eq, P_eq and stability flags along the coordinate
+  a_eq_mm, NaN-padded along ``point`` (the points where G = gamma, increasing a);
+- loading curves (t_over_R, h_over_R, loading_state): loading_a along the coordinate
+  loading_delta_mm, and with C10 (exact scaling, every C10 of the axis) loading_P, loading_U;
+- relaxation curves (t_over_R, h_over_R, relaxation[, relaxation_state]): one path per held
+  contact radius, the coordinate relaxation_a_mm, relaxation_used, and with C10
+  relaxation_P and relaxation_U along the coordinate relaxation_delta_mm;
 - deformed states (t_over_R, h_over_R, profile | stress_map, ...): profile_* (outer and
   inner surfaces of a few loading states and of the widest relaxation path), map_* (deformed
   nodes, von Mises stress with C10, plotting triangles);
 - per shell (t_over_R, h_over_R): pathset_fingerprint, the catalogue entry of the FE
   paths used, and gamma_max_hat, the largest gamma / (C10 R) they serve.
 
-``xarray.open_dataset("results/<name>.nc")`` is all a reader needs.
+Coordinates: the dimension coordinates keep DESIGN.md's names (C10, t_over_R, h_over_R,
+gamma); non-index companions carry the unit in their name (C10_MPa, gamma_J_m2, t_mm, h_mm,
+gamma_hat) and so do the curves' coordinates (a_eq_mm, loading_delta_mm, relaxation_a_mm,
+relaxation_delta_mm), so that ``ds.P_star.sel(C10=0.3, t_over_R=0.15, h_over_R=1).plot(
+x="gamma_J_m2")`` and ``ds.P_eq.sel(C10=0.3, t_over_R=0.15, h_over_R=1, gamma=30).plot(
+x="a_eq_mm")`` work.  Unit strings are read by UDUNITS (CF) and by
+pint's default registry alike.  The study is stored as plain attributes (R_mm, base_C10_MPa,
+sweep_gamma_J_m2, ..., see `study_attrs`), from which `study_of` rebuilds the study file's
+dictionary.
+
+``xarray.open_dataset("results/<name>.nc")`` is all a reader needs; the file passes the
+CF-1.8 compliance checker without a high-priority failure.
 """
-from dataclasses import asdict
+from dataclasses import asdict, fields
 from datetime import datetime, timezone
 
 import numpy as np
@@ -30,15 +42,18 @@ import xarray as xr
 
 from shell_adhesion import solver
 from shell_adhesion.catalogue import write_atomic
-from shell_adhesion.catalogue.fingerprint import canonical_json
 from shell_adhesion.solver import case
 from shell_adhesion.solver.scaling import energy_mJ, force_N, gamma_hat, length_mm
 from shell_adhesion.solver.theory import eta_of
 
+from .config import FACTORS, KEYS, Outputs
 from .keys import solver_source_sha256
 from .plan import LADDER, Plan
 
 DIMS = ("C10", "t_over_R", "h_over_R", "gamma")
+FACTOR_OF_DIM = dict(zip(DIMS, FACTORS))     # dimension -> the study file's name
+GAMMA_UNITS = "J/m^2"           # read by UDUNITS and pint's default registry ("J m-2" is not)
+INDEX_DTYPE = np.int32          # CF-1.8 has no 64-bit integers
 STATUS = ("ok", "not requested", "solver failed", "out of range")
 
 _PULL_OFF = {   # name: (units, long_name, kind) kind: force, length or 1
@@ -51,7 +66,7 @@ _PULL_OFF = {   # name: (units, long_name, kind) kind: force, length or 1
     "a0": ("mm", "contact radius at zero load a0 (NaN: not reached by the paths)", "length"),
 }
 _CURVES = {
-    "a_eq": ("mm", "contact radius a along the equilibrium curve G = gamma"),
+    "a_eq_mm": ("mm", "contact radius a along the equilibrium curve G = gamma"),
     "delta_eq": ("mm", "rim displacement delta along the equilibrium curve"),
     "P_eq": ("N", "rim force P along the equilibrium curve"),
     "stable_fixed_load": ("1", "equilibrium stable at fixed load, dP/da > 0 (1 yes, 0 no)"),
@@ -69,7 +84,7 @@ def _evaluate(ps, surface, C10, R, t, gamma):
     conv = dict(force=lambda x: force_N(x, C10, R), length=lambda x: length_mm(x, R))
     values = {k: conv[kind](getattr(po, k)) for k, (_, _, kind) in _PULL_OFF.items()}
     values["eta"] = eta_of(values["P_star"], R, t * R, C10, gamma)
-    curve = dict(a_eq=length_mm(eq.a, R), delta_eq=length_mm(eq.delta, R),
+    curve = dict(a_eq_mm=length_mm(eq.a, R), delta_eq=length_mm(eq.delta, R),
                  P_eq=force_N(eq.P, C10, R),
                  stable_fixed_load=np.asarray(eq.stable_fixed_load, dtype=float),
                  stable_fixed_grips=np.asarray(eq.stable_fixed_grips, dtype=float))
@@ -112,7 +127,7 @@ def build(plan: Plan, served: dict, failed: dict, history: str = "") -> xr.Datas
             except ValueError as e:     # solver.energy.OutOfRange and gamma > gamma_max
                 status[i], reason[i] = "out of range", str(e)
 
-    n_point = max([len(c["a_eq"]) for _, c in results.values()], default=0)
+    n_point = max([len(c["a_eq_mm"]) for _, c in results.values()], default=0)
     n_load = max([len(ps.loading_delta) for _, ps in served.values()], default=0)
     values = {k: np.full(shape, np.nan) for k in (*_PULL_OFF, "eta")}
     curves = {k: np.full(shape + (n_point,), np.nan) for k in _CURVES}
@@ -155,7 +170,7 @@ def build(plan: Plan, served: dict, failed: dict, history: str = "") -> xr.Datas
         data.update(_deformed_states(served, index, shells, C10s, R))
     if study.outputs.loading_curves:
         L = ("t_over_R", "h_over_R", "loading_state")
-        data["loading_delta"] = (L, length_mm(load["delta"], R), _attrs(
+        data["loading_delta_mm"] = (L, length_mm(load["delta"], R), _attrs(
             "mm", "rim displacement delta on loading without adhesion"))
         data["loading_a"] = (L, length_mm(load["a"], R), _attrs(
             "mm", "contact radius a on loading without adhesion"))
@@ -165,31 +180,39 @@ def build(plan: Plan, served: dict, failed: dict, history: str = "") -> xr.Datas
         data["loading_U"] = (("C10", *L), energy_mJ(load["U"][None], c, R), _attrs(
             "mJ", "strain energy U on loading without adhesion"))
 
+    C10_attrs = _attrs("MPa", "neo-Hookean constant C10 (shear modulus / 2)")
+    gamma_attrs = _attrs(GAMMA_UNITS, "work of adhesion gamma")
     coords = {
-        "C10": ("C10", C10s, _attrs("MPa", "neo-Hookean constant C10 (shear modulus / 2)")),
+        "C10": ("C10", C10s, C10_attrs),
         "t_over_R": ("t_over_R", np.array(ax["t_over_R"]),
                      _attrs("1", "shell thickness over outer radius t/R")),
         "h_over_R": ("h_over_R", np.array(ax["h_over_R"]),
                      _attrs("1", "cap depth over outer radius h/R")),
-        "gamma": ("gamma", gammas, _attrs("J m-2", "work of adhesion gamma")),
+        "gamma": ("gamma", gammas, gamma_attrs),
+        "C10_MPa": ("C10", C10s, C10_attrs),
+        "gamma_J_m2": ("gamma", gammas, gamma_attrs),
         "t_mm": ("t_over_R", np.array(ax["t_over_R"]) * R, _attrs("mm", "shell thickness t")),
         "h_mm": ("h_over_R", np.array(ax["h_over_R"]) * R, _attrs("mm", "cap depth h")),
         "R": ((), R, _attrs("mm", "outer radius of curvature R")),
     }
-    if study.outputs.equilibrium_curves:
-        coords["point"] = ("point", np.arange(n_point), _attrs(
-            "1", "index along the equilibrium curve (increasing contact radius)"))
-    if study.outputs.loading_curves:
-        coords["loading_state"] = ("loading_state", np.arange(n_load), _attrs(
-            "1", "index of the loading state (increasing delta)"))
+    # what labels a point or a curve is a coordinate, so that .sel and .plot(x=...) see it
+    coords.update({k: data.pop(k) for k in CURVE_COORDS if k in data})
+    sizes = {d: n for v in (*data.values(), *coords.values())
+             for d, n in zip(v[0], np.shape(v[1]))}
     for dim, long_name in _INDEX_DIMS.items():
-        if any(dim in v[0] for v in data.values()):
-            n = max(np.shape(v[1])[v[0].index(dim)] for v in data.values() if dim in v[0])
-            coords[dim] = (dim, np.arange(n), _attrs("1", long_name))
+        if dim in sizes:
+            coords[dim] = (dim, np.arange(sizes[dim], dtype=INDEX_DTYPE), _attrs("1", long_name))
     return xr.Dataset(data, coords=coords, attrs=_global_attrs(plan, history))
 
 
+# non-index coordinates: the curves' own variables and the dimensionless work of adhesion
+CURVE_COORDS = ("gamma_hat", "a_eq_mm", "loading_delta_mm", "relaxation_a_mm",
+                "relaxation_delta_mm")
+
+
 _INDEX_DIMS = {
+    "point": "index along the equilibrium curve (increasing contact radius)",
+    "loading_state": "index of the loading state (increasing delta)",
     "relaxation": "index of the relaxation path (increasing held contact radius)",
     "relaxation_state": "index along a relaxation path (delta decreasing from loading)",
     "profile": "index of the kept deformed state (loading, then relaxation)",
@@ -227,11 +250,11 @@ def _relaxation_curves(served, index, shells, C10s, R) -> dict:
     S, K = ("t_over_R", "h_over_R", "relaxation"), ("t_over_R", "h_over_R", "relaxation",
                                                     "relaxation_state")
     return {
-        "relaxation_a": (S, length_mm(a, R), _attrs("mm", "held contact radius a of the path")),
+        "relaxation_a_mm": (S, length_mm(a, R), _attrs("mm", "held contact radius a of the path")),
         "relaxation_used": (S, used, _attrs(
             "1", "path used by the energy method (1), or left out because the centre lifts "
                  "or a free node touches (0)")),
-        "relaxation_delta": (K, length_mm(delta, R), _attrs(
+        "relaxation_delta_mm": (K, length_mm(delta, R), _attrs(
             "mm", "rim displacement delta along the relaxation at fixed contact radius")),
         "relaxation_P": (("C10", *K), force_N(P[None], c, R), _attrs(
             "N", "rim force P along the relaxation at fixed contact radius")),
@@ -307,23 +330,68 @@ def _global_attrs(plan: Plan, history: str) -> dict:
         comment="Full cube over the union of the study's values; only the requested points "
                 "(base, sweep lines, grid) are evaluated, the others are NaN with status "
                 "'not requested'. P > 0 compression, delta > 0 approach.",
-        study_name=study.name, study=canonical_json(study.as_dict()),
+        **study_attrs(study.as_dict()),
         study_file=study.source, study_sha256=study.sha256,
-        R_mm=study.R_mm, interface=study.interface, mesh=study.mesh,
-        delta_max_over_R=study.delta_max_over_R,
         gamma_max_ladder=", ".join(str(m) for m in LADDER) + " x 10^k",
         solver_version=solver.__version__, solver_source_sha256=solver_source_sha256(),
-        solver_settings=canonical_json(asdict(s)),
         **{f"solver_{k}": int(v) if isinstance(v, bool) else v for k, v in asdict(s).items()},
-        relaxation_rule=canonical_json({"G_SAFETY": case.G_SAFETY,
-                                        "STEPS_PER_PATH": case.STEPS_PER_PATH}),
+        relaxation_G_SAFETY=case.G_SAFETY, relaxation_STEPS_PER_PATH=case.STEPS_PER_PATH,
     )
 
 
+# the study file's keys and the attributes that hold them (lists of numbers: arrays)
+_SCALAR_KEYS = {"name": "study_name", "description": "study_description", "R_mm": "R_mm",
+                "interface": "interface", "mesh": "mesh",
+                "delta_max_over_R": "delta_max_over_R"}
+_GROUPS = {"base": "base_", "sweeps": "sweep_", "grid": "grid_"}
+_OUTPUTS = "output_"
+
+
+def study_attrs(study: dict) -> dict:
+    """Netcdf attributes holding a study dictionary (the study file's schema) as plain
+    numbers and strings: study_name, R_mm, base_C10_MPa, sweep_gamma_J_m2 (array), ...,
+    output_loading_curves (1 or 0)."""
+    out = {a: study[k] for k, a in _SCALAR_KEYS.items() if k in study}
+    for group, prefix in _GROUPS.items():
+        for f, v in study.get(group, {}).items():
+            out[prefix + f] = float(v) if group == "base" else np.asarray(v, dtype=float)
+    out.update({_OUTPUTS + k: int(v) for k, v in study.get("outputs", {}).items()})
+    return out
+
+
+def study_of(ds: xr.Dataset) -> dict:
+    """The study dictionary (the study file's schema) stored in the cube's attributes;
+    `study.config.validate` turns it back into a Study."""
+    a = ds.attrs
+    out = {k: a[name] for k, name in _SCALAR_KEYS.items() if name in a}
+    for k in ("R_mm", "delta_max_over_R"):
+        if k in out:
+            out[k] = float(out[k])
+    for group, prefix in _GROUPS.items():
+        values = {f: a[prefix + f] for f in FACTORS if prefix + f in a}
+        if values:          # the study file leaves out an empty group
+            out[group] = ({f: float(v) for f, v in values.items()} if group == "base" else
+                          {f: [float(x) for x in np.atleast_1d(v)] for f, v in values.items()})
+    out["outputs"] = {f.name: bool(a[_OUTPUTS + f.name]) for f in fields(Outputs)
+                      if _OUTPUTS + f.name in a}
+    return {k: out[k] for k in KEYS if k in out}
+
+
+def base_attr(dim: str) -> str:
+    """Attribute name of the study's base value of a cube dimension (base_C10_MPa, ...)."""
+    return _GROUPS["base"] + FACTOR_OF_DIM[dim]
+
+
 def write(ds: xr.Dataset, path) -> None:
-    """Write the cube to `path` atomically (netCDF4, compressed floats)."""
-    enc = {v: {"zlib": True, "complevel": 4} for v in ds.data_vars
+    """Write the cube to `path` atomically (netCDF4, compressed floats).
+
+    CF: a coordinate variable has no _FillValue, nor does a coordinate that is never
+    missing; the NaN-padded curve coordinates keep theirs."""
+    enc = {v: {"zlib": True, "complevel": 4} for v in ds.variables
            if ds[v].dtype.kind == "f" and ds[v].ndim > 0 and ds[v].size > 0}
+    for c in ds.coords:
+        if ds[c].dtype.kind == "f" and (c in ds.dims or not ds[c].isnull().any()):
+            enc.setdefault(c, {})["_FillValue"] = None
     write_atomic(ds, path, enc)
 
 

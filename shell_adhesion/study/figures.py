@@ -1,7 +1,9 @@
 """The paper's figures regenerated from a results cube (matplotlib; never runs the FE).
 
-Each `fig_*` function takes the Dataset written by `shell-adhesion run` and returns a
-`matplotlib.figure.Figure` (no pyplot state).  Shell-level figures are drawn for the
+Each `fig_*` function takes the Dataset written by `shell-adhesion run`, draws into the
+caller's Axes (`ax=`, or `axes=` for several panels) or into a new Figure (no pyplot
+state), and returns its Axes (an array of Axes for several panels).  Colours: the viridis
+family.  Shell-level figures are drawn for the
 study's base point unless `at` names other coordinates (C10 MPa, t_over_R, h_over_R,
 gamma J/m^2).  Units: lengths mm, forces N, energies mJ, stresses MPa; P > 0
 compression, delta > 0 approach.  Fig. 5 rebuilds U_E(a, delta) from the stored
@@ -12,7 +14,9 @@ relaxation curves with `solver.energy` (interpolation only).
 from pathlib import Path
 
 import numpy as np
+from matplotlib import colormaps
 from matplotlib.figure import Figure
+from matplotlib.patches import Rectangle
 from matplotlib.tri import Triangulation
 
 from shell_adhesion.catalogue.atomic import atomic_path
@@ -25,8 +29,9 @@ from .analysis import along, base_point, eta_fit
 SWEEPS = (("C10", "C10 [MPa]"), ("t_over_R", "t/R [1]"), ("h_over_R", "h/R [1]"),
           ("gamma", "gamma [J/m$^2$]"))
 
-
 CLIP_PERCENTILE = 99.0
+CMAP = "viridis"            # sequences of curves and the stress maps
+MIN_DPI = 100               # the least resolution of a PNG meant to be read (README copies)
 
 
 class MissingData(ValueError):
@@ -58,6 +63,43 @@ def _shell(ds, p):
     return dict(t_over_R=p["t_over_R"], h_over_R=p["h_over_R"])
 
 
+def _axes(given, n, figsize, **subplots):
+    """(flat array of n Axes, whether they are new): the caller's, or a new Figure's."""
+    if given is not None:
+        axes = np.ravel(np.asarray(given, dtype=object))
+        if len(axes) != n:
+            raise ValueError(f"this figure needs {n} Axes, got {len(axes)}")
+        return axes, False
+    fig = Figure(figsize=figsize, layout="constrained")
+    return np.ravel(np.asarray(fig.subplots(squeeze=False, **subplots), dtype=object)), True
+
+
+def _drawn(artist) -> bool:
+    """Whether an artist shows something: a line with a visible segment or marker, a
+    non-empty patch collection."""
+    if hasattr(artist, "get_xydata"):
+        xy = artist.get_xydata()
+        n = int(np.isfinite(xy).all(axis=1).sum()) if len(xy) else 0
+        has_line = artist.get_linestyle() not in ("None", "", " ") and n >= 2
+        has_marker = artist.get_marker() not in ("None", "", " ", None) and n >= 1
+        return artist.get_visible() and (has_line or has_marker)
+    paths = getattr(artist, "get_paths", lambda: [None])()
+    return artist.get_visible() and len(paths) > 0
+
+
+def _legend(ax, **kw):
+    """A legend of the labelled artists that show something (none if there are none)."""
+    handles, labels = ax.get_legend_handles_labels()
+    pairs = [(h, lab) for h, lab in zip(handles, labels) if _drawn(h)]
+    if pairs:
+        ax.legend(*zip(*pairs), **kw)
+
+
+def figure_of(axes) -> Figure:
+    """The Figure holding what a `fig_*` function returned."""
+    return np.ravel(np.asarray(axes, dtype=object))[0].figure
+
+
 def _title(ds, p, with_gamma=True):
     R = float(ds["R"])
     s = (f"R = {R:g} mm, t = {p['t_over_R'] * R:g} mm, h = {p['h_over_R'] * R:g} mm, "
@@ -75,8 +117,9 @@ def _section(ds, j, shell):
     return np.concatenate([ro, ri[::-1]]), np.concatenate([zo, zi[::-1]])
 
 
-def fig_profiles(ds, at=None) -> Figure:
-    """Fig. 3: deformed cross-sections (a) under loading, (b) relaxing at the largest a."""
+def fig_profiles(ds, at=None, axes=None):
+    """Fig. 3: deformed cross-sections (a) under loading, (b) relaxing at the largest a.
+    Two Axes."""
     _need(ds, "profile_stage", "profile_outer_r")
     p = _point(ds, at)
     shell = _shell(ds, p)
@@ -84,85 +127,87 @@ def fig_profiles(ds, at=None) -> Figure:
     delta = ds["profile_delta"].sel(shell).values
     P = ds["profile_P"].sel(C10=p["C10"], **shell).values
     a = ds["profile_a"].sel(shell).values
-    fig = Figure(figsize=(10, 4.6), layout="constrained")
-    axes = fig.subplots(1, 2, sharey=True)
+    axes, new = _axes(axes, 2, (10, 4.8), ncols=2, sharey=True)
     for ax, name in zip(axes, ("loading", "relaxation")):
         idx = np.flatnonzero(stage == name)
-        colours = _colours(len(idx))
-        for c, j in zip(colours, idx):
+        for c, j in zip(_colours(len(idx)), idx):
             r, z = _section(ds, j, shell)
             ax.plot(r, z, color=c, lw=1.2,
                     label=f"delta = {delta[j]:.2f} mm, P = {np.round(P[j], 2) + 0.0:.2f} N")
         ax.axhline(0.0, color="k", lw=2)
         ax.set_aspect("equal")
-        ax.set_xlabel("r [mm]")
-        ax.legend(fontsize=7, loc="upper left", frameon=False)
+        ax.set_xlabel("radius r [mm]")
+        _legend(ax, fontsize=7, loc="upper left", frameon=False)
         if name == "loading":
             ax.set_title("(a) loading without adhesion (a grows with delta)", fontsize=10)
         elif len(idx):
-            ax.set_title(f"(b) unloading at fixed a = {a[idx[0]]:.2f} mm", fontsize=10)
+            ax.set_title(f"(b) unloading at fixed contact radius a = {a[idx[0]]:.2f} mm",
+                         fontsize=10)
         else:
             ax.set_title("(b) no relaxation profiles stored", fontsize=10)
-    axes[0].set_ylabel("z [mm] (plane at z = 0)")
-    fig.suptitle(_title(ds, p, with_gamma=False), fontsize=10)
-    return fig
+    axes[0].set_ylabel("height z [mm] (plane at z = 0)")
+    if new:
+        figure_of(axes).suptitle("Deformed cross-sections; " + _title(ds, p, with_gamma=False),
+                                 fontsize=10)
+    return axes
 
 
 def _colours(n):
-    from matplotlib import colormaps
-    return colormaps["viridis"](np.linspace(0, 0.9, max(n, 1)))
+    return colormaps[CMAP](np.linspace(0, 0.9, max(n, 1)))
 
 
 def _relaxation(ds, p, k):
     """(delta, P) of relaxation path k of the shell at `p` (NaN padding removed)."""
-    d = ds["relaxation_delta"].sel(_shell(ds, p)).values[k]
+    d = ds["relaxation_delta_mm"].sel(_shell(ds, p)).values[k]
     P = ds["relaxation_P"].sel(C10=p["C10"], **_shell(ds, p)).values[k]
     keep = ~np.isnan(d)
     return d[keep], P[keep]
 
 
-def fig_load_relaxation(ds, at=None, n_paths=8) -> Figure:
+def fig_load_relaxation(ds, at=None, n_paths=8, ax=None):
     """Fig. 4: P(delta) on loading and on relaxation paths, with the energies of one
     equilibrium state B shaded: U_E (loading area minus the area recovered along AB)
-    and the load's potential U_P = -P delta."""
-    _need(ds, "loading_delta", "loading_P", "relaxation_delta", "relaxation_P",
-          "a_eq", "delta_eq", "P_eq")
+    and the load's potential U_P = -P delta.  One Axes."""
+    _need(ds, "loading_delta_mm", "loading_P", "relaxation_delta_mm", "relaxation_P",
+          "a_eq_mm", "delta_eq", "P_eq")
     p = _point(ds, at)
     shell = _shell(ds, p)
-    ld = ds["loading_delta"].sel(shell).values
+    ld = ds["loading_delta_mm"].sel(shell).values
     lP = ds["loading_P"].sel(C10=p["C10"], **shell).values
     keep = ~np.isnan(ld)
     ld, lP = ld[keep], lP[keep]
-    ra = ds["relaxation_a"].sel(shell).values
+    ra = ds["relaxation_a_mm"].sel(shell).values
     n = int(np.sum(~np.isnan(ra)))
-    fig = Figure(figsize=(7.5, 5.2), layout="constrained")
-    ax = fig.subplots()
-    ax.plot(ld, lP, color="k", lw=2, label="loading, gamma = 0 (OA)")
+    (ax,), new = _axes(ax, 1, (7.5, 5.4))
+    colours = colormaps[CMAP]([0.0, 0.3, 0.55, 0.8])     # loading, AB, U_E, P delta
+    ax.plot(ld, lP, color=colours[0], lw=2.2, label="loading, gamma = 0 (OA)")
     # the shaded example: the path whose a is nearest the equilibrium at P = 0 (a0)
-    eq = ds[["a_eq", "delta_eq", "P_eq"]].sel(p)
-    a_eq, d_eq, P_eq = (eq[v].values[~np.isnan(eq["a_eq"].values)] for v in ("a_eq", "delta_eq", "P_eq"))
+    eq = ds[["delta_eq", "P_eq"]].sel(p)
+    ok = ~np.isnan(eq["a_eq_mm"].values)
+    a_eq, d_eq = eq["a_eq_mm"].values[ok], eq["delta_eq"].values[ok]
     a0 = float(ds["a0"].sel(p))
     target = a0 if np.isfinite(a0) else float(np.median(a_eq))
     k = int(np.nanargmin(np.abs(ra - target)))
     others = [i for i in range(n) if i != k]      # grey: n_paths - 1 others, evenly in a
     pick = np.unique(np.linspace(0, len(others) - 1, min(n_paths - 1, len(others))).round())
-    for i in (others[int(j)] for j in pick):
+    for m, i in enumerate(others[int(j)] for j in pick):
         d, P = _relaxation(ds, p, i)
-        ax.plot(d, P, color="0.55", lw=0.8)
+        ax.plot(d, P, color="0.6", lw=0.8,
+                label="other relaxations at fixed a (steeper: larger a)" if m == 0 else None)
     d, P = _relaxation(ds, p, k)
     dB = float(np.interp(ra[k], a_eq, d_eq))
     PB = float(np.interp(dB, d[::-1], P[::-1]))
     d1, P1 = d[0], P[0]
-    ax.plot(d, P, color="C0", lw=1.6, label=f"relaxation at a = {ra[k]:.2f} mm (AB)")
+    ax.plot(d, P, color=colours[1], lw=1.8, label=f"relaxation at a = {ra[k]:.2f} mm (AB)")
     on = ld <= d1
     UA = float(np.trapezoid(lP[on], ld[on]))
-    ax.fill_between(ld[on], 0, lP[on], color="C1", alpha=0.25,
+    ax.fill_between(ld[on], 0, lP[on], color=colours[2], alpha=0.35,
                     label=f"U_E at A = area under OA: {UA:.3g} mJ")
     part = d >= dB
     W = float(np.trapezoid(P[part][::-1], d[part][::-1]))
-    ax.fill_between(d[part], 0, P[part], facecolor="none", edgecolor="C0", hatch="//",
+    ax.fill_between(d[part], 0, P[part], facecolor="none", edgecolor=colours[1], hatch="//",
                     label=f"signed area under AB, int P d(delta) = {W:.3g} mJ")
-    ax.fill_between([0, dB], 0, PB, color="C2", alpha=0.25,
+    ax.fill_between([0, dB], 0, PB, color=colours[3], alpha=0.35,
                     label=f"rectangle P delta at B = -U_P: {PB * dB:.3g} mJ")
     A_B = np.pi * ra[k] ** 2
     ax.text(0.98, 0.03, f"at B: U_E = {UA:.3g} - ({W:.3g}) = {UA - W:.3g} mJ, "
@@ -170,7 +215,7 @@ def fig_load_relaxation(ds, at=None, n_paths=8) -> Figure:
             f"U_T = U_E + U_P - gamma A = {UA - W - PB * dB - p['gamma'] * 1e-3 * A_B:.3g} mJ",
             transform=ax.transAxes, ha="right", va="bottom", fontsize=8)
     ax.plot([d1], [P1], "ko")
-    ax.plot([dB], [PB], "o", color="C3")
+    ax.plot([dB], [PB], "kD")
     ax.annotate("A", (d1, P1), textcoords="offset points", xytext=(5, 5))
     ax.annotate(f"B: equilibrium, gamma = {p['gamma']:g} J/m$^2$", (dB, PB),
                 textcoords="offset points", xytext=(8, -12))
@@ -178,9 +223,10 @@ def fig_load_relaxation(ds, at=None, n_paths=8) -> Figure:
     ax.axvline(0, color="k", lw=0.5)
     ax.set_xlabel("rim displacement delta [mm] (approach > 0)")
     ax.set_ylabel("rim force P [N] (compression > 0)")
-    ax.set_title(_title(ds, p), fontsize=9)
-    ax.legend(fontsize=8, loc="upper left")
-    return fig
+    ax.set_title("Loading and relaxation at fixed contact radius (Maugis' energies)\n"
+                 + _title(ds, p), fontsize=9)
+    _legend(ax, fontsize=8, loc="upper left")
+    return ax
 
 
 def _surface(ds, p):
@@ -188,7 +234,7 @@ def _surface(ds, p):
     curves (the paths the energy method used, as in PathSet.surface)."""
     shell = _shell(ds, p)
     R, C10 = float(ds["R"]), p["C10"]
-    a = ds["relaxation_a"].sel(shell).values
+    a = ds["relaxation_a_mm"].sel(shell).values
     used = ds["relaxation_used"].sel(shell).values == 1
     paths = []
     for k in np.flatnonzero(used & ~np.isnan(a)):
@@ -199,10 +245,11 @@ def _surface(ds, p):
     return energy_surface(paths)
 
 
-def fig_energy(ds, at=None, n_curves=7) -> Figure:
-    """Fig. 5: total energy U_T(A) at fixed load (above) and at fixed grips (below),
-    for loads from P* to -P* and displacements from delta_dagger to -delta_dagger, the
-    equilibrium locus G = gamma through their minima, and the pull-off states marked."""
+def fig_energy(ds, at=None, n_curves=7, axes=None):
+    """Fig. 5: total energy U_T(A) at fixed load (a) and at fixed grips (b), for loads
+    from P* to -P* and displacements from delta_dagger to -delta_dagger, the equilibrium
+    locus G = gamma through their minima and the pull-off states marked; beside each, a
+    zoom on the pull-off state.  Four Axes: (a), its zoom, (b), its zoom."""
     _need(ds, "relaxation_U", "relaxation_used", "P_eq", "delta_eq", "stable_fixed_load",
           "stable_fixed_grips")
     p = _point(ds, at)
@@ -213,45 +260,54 @@ def fig_energy(ds, at=None, n_curves=7) -> Figure:
     po = {k: float(ds[k].sel(p)) for k in ("P_star", "a_star", "delta_dagger", "a_dagger",
                                            "P_dagger")}
     units = (R ** 2, C10 * R ** 3)         # mm^2 and mJ per dimensionless unit
-    fig = Figure(figsize=(7.5, 9), layout="constrained")
-    top, bottom = fig.subplots(2, 1)
+    axes, new = _axes(axes, 4, (11, 9.5), nrows=2, ncols=2, width_ratios=(2.2, 1))
+    top, top_zoom, bottom, bottom_zoom = axes
     P_star = po["P_star"] / (C10 * R ** 2)
     hi = min(np.max(eq["P_eq"].values[eq["stable_fixed_load"].values == 1]) / (C10 * R ** 2),
              -P_star)
-    _family(top, lambda P: total_energy_fixed_load(s, g, P), np.linspace(P_star, hi, n_curves),
-            lambda P: f"P = {P * C10 * R ** 2:.2f} N", units,
+    _family(top, top_zoom, lambda P: total_energy_fixed_load(s, g, P),
+            np.linspace(P_star, hi, n_curves), lambda P: f"P = {P * C10 * R ** 2:.2f} N", units,
             (P_star, po["a_star"] / R, f"fixed-load pull-off P* = {po['P_star']:.3f} N"))
-    top.set_title(f"(a) fixed load; {_title(ds, p)}", fontsize=9)
+    top.set_title("(a) fixed load P", fontsize=10)
     d_dagger = po["delta_dagger"] / R
     hi = min(np.max(eq["delta_eq"].values[eq["stable_fixed_grips"].values == 1]) / R,
              -d_dagger)
-    _family(bottom, lambda d: total_energy_fixed_grips(s, g, d),
+    _family(bottom, bottom_zoom, lambda d: total_energy_fixed_grips(s, g, d),
             np.linspace(d_dagger, hi, n_curves), lambda d: f"delta = {d * R:.3f} mm", units,
             (d_dagger, po["a_dagger"] / R, f"fixed-grips pull-off delta = "
              f"{po['delta_dagger']:.3f} mm, P = {po['P_dagger']:.3f} N"))
-    bottom.set_title("(b) fixed grips", fontsize=9)
-    for ax in (top, bottom):
+    bottom.set_title("(b) fixed grips delta", fontsize=10)
+    for ax in axes:
         ax.set_xlabel("contact area A = pi a$^2$ [mm$^2$]")
         ax.set_ylabel("total energy U_T [mJ]")
+    for ax in (top, bottom):
         ax.set_xlim(left=0)
-        ax.legend(fontsize=7, loc="best")
-    return fig
+        _legend(ax, fontsize=7, loc="upper right")
+    if new:
+        figure_of(axes).suptitle("Total energy against contact area (Maugis' graphical "
+                                 "method), " + _title(ds, p), fontsize=10)
+    return axes
 
 
-def _family(ax, energy, levels, label, units, pull_off):
-    """U_T(A) curves at each level (the first is the pull-off one, drawn last in red),
-    their interior minima and the locus through them; clipped to 1.6 times the largest
-    equilibrium area."""
+# half-width of the zoom panels of Fig. 5, as a fraction of the pull-off area
+ZOOM = 0.6
+
+
+def _family(ax, zoom, energy, levels, label, units, pull_off):
+    """U_T(A) curves at each level (the first is the pull-off one, drawn last and thick),
+    their interior minima and the locus through them, clipped to 1.6 times the largest
+    equilibrium area; on `zoom`, the pull-off curve around its state, where it has an
+    inflection with a horizontal tangent (the minimum just disappears)."""
     A_u, U_u = units
     curves = [(level, *energy(level)) for level in levels[1:]]
     curves = [c for c in curves if len(c[1]) >= 3]
     minima = [(i, _interior_minimum(UT)) for i, (_, _, UT) in enumerate(curves)]
     minima = [(i, j) for i, j in minima if j is not None]
     A_max = 1.6 * max([curves[i][1][j] for i, j in minima], default=np.inf)
-    for c, (level, A, UT) in zip(_colours(len(curves)), curves):
+    colours = _colours(len(curves))
+    for c, (level, A, UT) in zip(colours, curves):
         keep = A <= A_max
         ax.plot(A[keep] * A_u, UT[keep] * U_u, color=c, lw=1.2, label=label(level))
-    colours = _colours(len(curves))
     for i, j in minima:
         _, A, UT = curves[i]
         ax.plot(A[j] * A_u, UT[j] * U_u, "o", mfc="none", color=colours[i])
@@ -259,11 +315,30 @@ def _family(ax, energy, levels, label, units, pull_off):
             "k--", lw=1, label="equilibrium G = gamma (minima)")
     level, a, text = pull_off
     A, UT = energy(level)
-    if len(A) >= 2:
-        keep = A <= A_max
-        A0 = np.pi * a ** 2
-        ax.plot(A[keep] * A_u, UT[keep] * U_u, color="C3", lw=1.8, label=text)
-        ax.plot([A0 * A_u], [np.interp(A0, A, UT) * U_u], "*", color="C3", ms=12)
+    zoom.set_title("zoom on the pull-off state (box at left)", fontsize=9)
+    if len(A) < 2:
+        zoom.text(0.5, 0.5, "no pull-off curve", ha="center", transform=zoom.transAxes)
+        return
+    keep = A <= A_max
+    A0 = np.pi * a ** 2
+    U0 = float(np.interp(A0, A, UT))
+    red = colormaps["magma"](0.55)
+    star = dict(color=red, ms=13, mec="k", mew=0.5)
+    ax.plot(A[keep] * A_u, UT[keep] * U_u, color=red, lw=2.2, label=text)
+    ax.plot([A0 * A_u], [U0 * U_u], "*", **star)
+    lo, hi = A0 * (1 - ZOOM), A0 * (1 + ZOOM)
+    near = (A >= lo) & (A <= hi)
+    zoom.plot(A[near] * A_u, UT[near] * U_u, ".-", color=red, lw=1.8,
+              label="pull-off curve (dots: FE contact states)")
+    zoom.plot([A0 * A_u], [U0 * U_u], "*", label="pull-off state", **star)
+    zoom.axhline(U0 * U_u, color="0.5", lw=0.8, ls=":", label="horizontal tangent")
+    y = UT[near] * U_u
+    span = max(float(np.ptp(y)) if len(y) else 0.0, 1e-9 * max(abs(U0 * U_u), 1.0))
+    zoom.set_xlim(lo * A_u, hi * A_u)
+    zoom.set_ylim(U0 * U_u - 0.7 * span, U0 * U_u + 0.7 * span)
+    _legend(zoom, fontsize=7, loc="upper left")
+    ax.add_patch(Rectangle((lo * A_u, U0 * U_u - 0.7 * span), (hi - lo) * A_u, 1.4 * span,
+                           fill=False, edgecolor="0.2", lw=1.0, ls="-"))
 
 
 def _interior_minimum(U):
@@ -271,32 +346,32 @@ def _interior_minimum(U):
     return i if 0 < i < len(U) - 1 else None
 
 
-def fig_contact_radius(ds) -> Figure:
+def fig_contact_radius(ds, axes=None):
     """Fig. 6a: contact radius a against load P along each sweep of the study, one panel
-    per swept parameter, fixed-load pull-off (P*, a*) marked."""
-    _need(ds, "a_eq", "P_eq")
+    per swept parameter, fixed-load pull-off (P*, a*) marked.  Four Axes."""
+    _need(ds, "a_eq_mm", "P_eq")
     _any_ok(ds)
     p = base_point(ds)
-    fig = Figure(figsize=(10, 8), layout="constrained")
-    axes = fig.subplots(2, 2).ravel()
+    axes, new = _axes(axes, 4, (10, 8), nrows=2, ncols=2)
     for ax, (dim, label) in zip(axes, SWEEPS):
         values = along(ds, "P_star", dim)[dim].values
         for c, v in zip(_colours(len(values)), values):
             q = dict(p, **{dim: float(v)})
-            a = ds["a_eq"].sel(q).values
-            P = ds["P_eq"].sel(q).values
+            P = ds["P_eq"].sel(q)
+            a = P["a_eq_mm"].values
             keep = ~np.isnan(a)
-            ax.plot(P[keep], a[keep], color=c, lw=1.2, label=_value_label(dim, v))
+            ax.plot(P.values[keep], a[keep], color=c, lw=1.2, label=_value_label(dim, v))
             ax.plot(float(ds["P_star"].sel(q)), float(ds["a_star"].sel(q)), "o", color=c)
-        ax.set_xlabel("P [N] (tension < 0)")
-        ax.set_ylabel("a [mm]")
+        ax.set_xlabel("rim force P [N] (tension < 0)")
+        ax.set_ylabel("contact radius a [mm]")
         ax.set_title(f"sweep of {label}" if len(values) > 1 else f"{label}: not swept",
                      fontsize=9)
-        if len(values):
-            ax.legend(fontsize=7, loc="upper left")
-    fig.suptitle("contact radius on the equilibrium curve G = gamma; dots: pull-off (P*, a*)",
-                 fontsize=10)
-    return fig
+        _legend(ax, fontsize=7, loc="upper left")
+    if new:
+        figure_of(axes).suptitle("Contact radius on the equilibrium curve G = gamma; dots: "
+                                 "fixed-load pull-off (P*, a*); others at the base point",
+                                 fontsize=10)
+    return axes
 
 
 def _value_label(dim, v):
@@ -305,38 +380,43 @@ def _value_label(dim, v):
     return f"{name} = {v:g}{unit}"
 
 
-def fig_pull_off(ds) -> Figure:
+def fig_pull_off(ds, axes=None):
     """Fig. 6b: |P*| against each swept parameter, with JKR (1.5 pi R gamma) and the
     linear-shell law eq. 3 with eta fitted over the evaluated shells (t/R < 1; all points
-    if there are none)."""
+    if there are none).  Four Axes."""
     _any_ok(ds)
     p = base_point(ds)
     R = float(ds["R"])
     shells = ds["t_over_R"] < 1                 # eq. 3 is a thin-shell law
     fit = eta_fit(ds, where=shells if int(((ds["status"] == "ok") & shells).sum()) else None)
-    fig = Figure(figsize=(10, 8), layout="constrained")
-    axes = fig.subplots(2, 2).ravel()
+    axes, new = _axes(axes, 4, (10, 8), nrows=2, ncols=2)
+    ours, law_c = colormaps[CMAP]([0.3, 0.75])
+    jkr_c = "k"
     for ax, (dim, label) in zip(axes, SWEEPS):
         P = along(ds, "P_star", dim)
         x = P[dim].values
         q = [dict(p, **{dim: float(v)}) for v in x]
         jkr = [-jkr_P_star_N(R, c["gamma"]) for c in q]
         law = [fit.eta * shell_law_scale_N(R, c["t_over_R"] * R, c["C10"], c["gamma"]) for c in q]
-        ax.plot(x, -P.values, "o-", color="C0", label="|P*| (this study)")
-        ax.plot(x, jkr, "k--", label="JKR 1.5 pi R gamma")
-        ax.plot(x, law, ":", color="C3", label=f"eq. 3, eta = {fit.eta:.2f} (fit over {fit.n} cases)")
+        ax.plot(x, -P.values, "o-", color=ours, label="|P*| (this study)")
+        ax.plot(x, jkr, "--", marker="x", color=jkr_c, label="JKR 1.5 pi R gamma")
+        ax.plot(x, law, ":", marker="+", color=law_c,
+                label=f"linear-shell law eq. 3, eta = {fit.eta:.2f} (fit over {fit.n} cases)")
         ax.set_xlabel(label)
-        ax.set_ylabel("|P*| [N]")
+        ax.set_ylabel("pull-off force |P*| [N]")
+        ax.set_ylim(bottom=0)
         ax.set_title(f"sweep of {label}" if len(x) > 1 else f"{label}: not swept", fontsize=9)
-        ax.legend(fontsize=7)
-    fig.suptitle(f"fixed-load pull-off force; others at the base point ({_title(ds, p)})",
-                 fontsize=9)
-    return fig
+        _legend(ax, fontsize=7)
+    if new:
+        figure_of(axes).suptitle("Fixed-load pull-off force; others at the base point ("
+                                 + _title(ds, p) + ")", fontsize=9)
+    return axes
 
 
-def fig_von_mises(ds, at=None) -> Figure:
+def fig_von_mises(ds, at=None, axes=None):
     """Von Mises stress on the deformed shell (like the paper's Fig. 2): at the end of
-    loading and on the widest relaxation path near delta = 0."""
+    loading and on the widest relaxation path near delta = 0.  One Axes per stored map
+    (two for a study's cube), the colour bar beside them."""
     _need(ds, "map_r", "map_von_mises", "map_triangles")
     p = _point(ds, at)
     shell = _shell(ds, p)
@@ -346,31 +426,34 @@ def fig_von_mises(ds, at=None) -> Figure:
     tri = m["map_triangles"].values
     tri = tri[tri[:, 0] >= 0]
     n = int(np.sum(m["map_stage"].values.astype(str) != ""))
-    fig = Figure(figsize=(5.5 * max(n, 1), 4.8), layout="constrained")
-    axes = np.atleast_1d(fig.subplots(1, max(n, 1)))
+    if not n:
+        raise MissingData("the cube holds no von Mises map for this shell")
+    axes, new = _axes(axes, n, (5.5 * n, 4.8), ncols=n)
     # the contact edge is a crack tip (stress singular under tension): clip the colour
     # scale at a high percentile so the rest of the shell stays readable
-    top = float(np.nanpercentile(vm[:n], CLIP_PERCENTILE)) if n else 1.0
-    for j, ax in enumerate(axes[:n]):
+    top = float(np.nanpercentile(vm[:n], CLIP_PERCENTILE))
+    for j, ax in enumerate(axes):
         r, z = m["map_r"].values[j], m["map_z"].values[j]
         used = np.unique(tri)
         r, z = r[: used.max() + 1], z[: used.max() + 1]
         art = ax.tripcolor(Triangulation(r, z, tri), vm[j][: used.max() + 1],
-                           shading="gouraud", cmap="jet", vmin=0, vmax=top)
+                           shading="gouraud", cmap=CMAP, vmin=0, vmax=top)
         ax.axhline(0, color="k", lw=2)
         ax.set_aspect("equal")
-        ax.set_xlabel("r [mm]")
-        ax.set_ylabel("z [mm]")
+        ax.set_xlabel("radius r [mm]")
+        ax.set_ylabel("height z [mm]")
         stage = str(m["map_stage"].values[j])
-        ax.set_title(f"({'ab'[j]}) {stage}: delta = {float(m['map_delta'].values[j]):.2f} mm, "
-                     f"P = {P[j]:.2f} N, a = {float(m['map_a'].values[j]):.2f} mm", fontsize=9)
-    if n:
-        fig.colorbar(art, ax=list(axes[:n]), label="von Mises stress [MPa]", shrink=0.8,
-                     extend="max")
-    note = (f"\ncolour scale clipped at the {CLIP_PERCENTILE:g}th percentile of the nodal values; "
-            f"largest {np.nanmax(vm[:n]):.3g} MPa (at the contact edge)" if n else "")
-    fig.suptitle(_title(ds, p, with_gamma=False) + note, fontsize=10)
-    return fig
+        ax.set_title(f"({'abcdefgh'[j % 8]}) {stage}: delta = "
+                     f"{float(m['map_delta'].values[j]):.2f} mm, P = {P[j]:.2f} N, "
+                     f"a = {float(m['map_a'].values[j]):.2f} mm", fontsize=9)
+    fig = figure_of(axes)
+    fig.colorbar(art, ax=list(axes), label="von Mises stress [MPa]", shrink=0.8, extend="max")
+    if new:
+        fig.suptitle("Von Mises stress on the deformed shell; " + _title(ds, p, with_gamma=False)
+                     + f"\ncolour scale clipped at the {CLIP_PERCENTILE:g}th percentile of the "
+                     f"nodal values; largest {np.nanmax(vm[:n]):.3g} MPa (at the contact edge)",
+                     fontsize=10)
+    return axes
 
 
 FIGURES = {
@@ -391,13 +474,14 @@ def _save(fig: Figure, path: Path, dpi):
 
 def write_figures(ds, out_dir, formats=("png", "pdf"), dpi=150) -> tuple:
     """Draw every figure the cube has data for into `out_dir`: (written paths,
-    {figure: reason} for those skipped)."""
+    {figure: reason} for those skipped).  Raster formats at `dpi` (the default, used by
+    `shell-adhesion run`, is above MIN_DPI, the least for a figure meant to be read)."""
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     written, skipped = [], {}
     for name, draw in FIGURES.items():
         try:
-            fig = draw(ds)
+            fig = figure_of(draw(ds))
         except (MissingData, ValueError, KeyError) as e:
             skipped[name] = f"{type(e).__name__}: {e}"
             continue

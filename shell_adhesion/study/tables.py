@@ -24,7 +24,6 @@ FORMATS = ("csv", "md", "tex")
 _CASE_COLUMNS = {"C10": "C10", "gamma": "gamma", "P_star": "P*", "delta_star": "delta*",
                  "a_star": "a*", "P_dagger": "P_dagger", "delta_dagger": "delta_dagger",
                  "a_dagger": "a_dagger", "a0": "a0", "eta": "eta"}
-_UNITS_TEXT = {"J m-2": "J/m^2"}
 
 
 @dataclass(frozen=True)
@@ -39,7 +38,7 @@ class Table:
 
 def _header(ds, name, label):
     unit = ds[name].attrs.get("units", "1")
-    return f"{label} [{_UNITS_TEXT.get(unit, unit)}]"
+    return f"{label} [{unit}]"
 
 
 def cases_table(ds: xr.Dataset) -> Table:

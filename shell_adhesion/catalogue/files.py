@@ -8,6 +8,7 @@ when reading.
 import hashlib
 from pathlib import Path
 
+import dask
 import netCDF4
 import xarray as xr
 
@@ -21,7 +22,10 @@ class CorruptFile(Exception):
 def write_atomic(ds: xr.Dataset, path, encoding=None) -> tuple:
     """Write `ds` to `path` atomically (catalogue.atomic); returns (sha256 hex, size in
     bytes) of the bytes written."""
-    with atomic_path(path) as tmp:
+    # with a dask.distributed client active, xarray would take its write lock on the
+    # scheduler (a round trip per file, and a hang or an error at exit once the scheduler
+    # is gone): the file is local, a local lock is right
+    with atomic_path(path) as tmp, dask.config.set(scheduler="synchronous"):
         ds.to_netcdf(tmp, engine="netcdf4", format="NETCDF4", encoding=encoding)
         data = Path(tmp).read_bytes()
     return hashlib.sha256(data).hexdigest(), len(data)

@@ -378,7 +378,7 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
             elif unreachable_since is None:
                 unreachable_since = time.perf_counter()
             elif time.perf_counter() - unreachable_since > LOST_AFTER_S:
-                raise SchedulerLost(f"lost the dask scheduler {client.scheduler.address}")
+                raise SchedulerLost("the scheduler stopped answering")
     progress.update("relaxation paths", n_shells, note=relax_note())
 
 
@@ -484,11 +484,13 @@ def _execute(plan, out_dir, output, catalogue, scheduler, client, show, workers,
                              ("cube", 1, "file")], enabled=show)
         if missing:
             if client is not None:
+                address = getattr(client.scheduler, "address", None) or scheduler
                 try:
                     compute(plan, missing, cat, client, tally, progress, external=True)
-                except (OSError, TimeoutError, CancelledError) as e:
-                    raise SchedulerLost(f"lost the dask scheduler {scheduler} "
-                                        f"({type(e).__name__})") from None
+                except (SchedulerLost, OSError, TimeoutError, CancelledError) as e:
+                    why = (f"no answer for {LOST_AFTER_S:g} s" if isinstance(e, SchedulerLost)
+                           else type(e).__name__)
+                    raise SchedulerLost(f"lost the dask scheduler {address} ({why})") from None
             else:
                 with _local_cluster(workers) as local:
                     if _has_bokeh():

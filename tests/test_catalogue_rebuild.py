@@ -6,10 +6,11 @@ import numpy as np
 import pytest
 
 from shell_adhesion.catalogue import Catalogue
-from shell_adhesion.catalogue.fingerprint import pathset_key
 from shell_adhesion.catalogue.store import check_index, CorruptIndex
 from shell_adhesion.solver import solve_paths
+from shell_adhesion.solver.pathset_dataset import from_dataset, to_dataset
 from shell_adhesion.study.cli import main
+from shell_adhesion.study.keys import pathset_key
 
 
 def test_rebuild_from_stored_files(tmp_path, capsys):
@@ -17,7 +18,7 @@ def test_rebuild_from_stored_files(tmp_path, capsys):
     key = pathset_key(0.15, 1.0, "no_slip", "coarse", 0.02, 0.006)
     folder = tmp_path / "cat"
     with Catalogue(folder) as cat:
-        entry = cat.store(key, ps)
+        entry = cat.store(key, to_dataset(ps))
     check_index(folder)
     (folder / "pathsets" / "junk.nc").write_bytes(b"\x89HDF\r\n" + b"0" * 100)
     shutil.copy(entry.file, folder / "pathsets" / ("0" * 64 + ".nc"))     # a misnamed copy
@@ -42,6 +43,6 @@ def test_rebuild_from_stored_files(tmp_path, capsys):
         hit = cat.fetch(key)
     assert [r["fingerprint"] for r in rows] == [entry.fingerprint] and rows[0]["status"] == "ok"
     assert hit is not None and hit[0].sha256 == entry.sha256
-    np.testing.assert_array_equal(hit[1].loading_P, ps.loading_P)
+    np.testing.assert_array_equal(from_dataset(hit[1]).loading_P, ps.loading_P)
     assert main(["catalogue", "list", "--catalogue", str(folder)]) == 0
     assert entry.fingerprint[:12] in capsys.readouterr().out

@@ -62,20 +62,20 @@ def test_dataset_named_dimensions_units_everywhere(solved):
                                      "point"}
     for name, var in ds.variables.items():
         assert var.attrs.get("units") and var.attrs.get("long_name"), name
-    assert list(ds.gamma.values) == GAMMAS and ds.gamma.units == "J m-2"
+    assert list(ds.gamma.values) == GAMMAS and ds.gamma.units == "J/m^2"
     # curves are coordinates: select and plot against them
     eq = ds.P_eq.sel(gamma=30)
-    assert eq.a_eq.units == "mm" and np.isfinite(eq.values).sum() > 3
+    assert eq.a_eq_mm.units == "mm" and np.isfinite(eq.values).sum() > 3
     import matplotlib
     matplotlib.use("Agg")
-    assert ds.loading_P.plot(x="loading_delta")
+    assert ds.loading_P.plot(x="loading_delta_mm")
     # the dimensional values are the path set's, scaled by C10 R^2 and R
     R, C10 = BASE["R_mm"], BASE["C10_MPa"]
     ps = solved.pathset
     np.testing.assert_allclose(ds.loading_P.values, force_N(ps.loading_P, C10, R), rtol=1e-14)
-    np.testing.assert_allclose(ds.loading_delta.values, length_mm(ps.loading_delta, R),
+    np.testing.assert_allclose(ds.loading_delta_mm.values, length_mm(ps.loading_delta, R),
                                rtol=1e-14)
-    assert ds.loading_delta.values[-1] == pytest.approx(2.0)
+    assert ds.loading_delta_mm.values[-1] == pytest.approx(2.0)
     for g in GAMMAS:
         _, po = ps.pull_off(gamma_hat(g, C10, R))
         assert float(ds.P_star.sel(gamma=g)) == pytest.approx(force_N(po.P_star, C10, R),
@@ -166,7 +166,7 @@ def test_mooney_rivlin_case_carries_its_material():
         abs(po["fixed_load"]["P_N"]) / theory.shell_law_scale_N(20, 3, 0.3, 30, m), rel=1e-8)
     ds = mr.to_dataset()
     assert ds.attrs["material_model"] == "mooney_rivlin"
-    assert float(ds.C01) == pytest.approx(0.06) and ds.C01.units == "MPa"
+    assert float(ds.C01_MPa) == pytest.approx(0.06) and ds.C01_MPa.units == "MPa"
     assert "mooney_rivlin" in ds.attrs["title"]
 
 

@@ -2,8 +2,8 @@
 xarray Dataset: lengths mm, forces N, energies mJ, C10 MPa, gamma J/m^2.
 
 Both renderings read the same dimensional values (`_values`); the Dataset uses the names
-of the study's cube (P_star, a_eq, loading_P, relaxation_delta, ...), with the curves'
-abscissas as coordinates so that ``ds.P_eq.sel(gamma=30).plot(x="a_eq")`` works.
+of the study's cube (P_star, a_eq_mm, loading_P, relaxation_delta_mm, ...), with the curves'
+abscissas as coordinates so that ``ds.P_eq.sel(gamma=30).plot(x="a_eq_mm")`` works.
 """
 import numpy as np
 import xarray as xr
@@ -125,12 +125,12 @@ def as_dataset(result) -> xr.Dataset:
         "R": ((), inp.R_mm, _attrs("mm", "outer radius of curvature R")),
         "t_mm": ((), inp.t_mm, _attrs("mm", "shell thickness t")),
         "h_mm": ((), inp.h_mm, _attrs("mm", "cap depth h")),
-        "C10": ((), inp.C10_MPa, _attrs("MPa", "material constant C10 (the scaling modulus; "
-                                               "neo-Hookean shear modulus / 2)")),
+        "C10_MPa": ((), inp.C10_MPa, _attrs("MPa", "material constant C10 (the scaling "
+                                                   "modulus; neo-Hookean shear modulus / 2)")),
         **_material_coords(inp.material, inp.C10_MPa),
         "loading_state": ("loading_state", np.arange(n_load),
                           _attrs("1", "index of the loading state (increasing delta)")),
-        "loading_delta": ("loading_state", loading["delta"],
+        "loading_delta_mm": ("loading_state", loading["delta"],
                           _attrs("mm", "rim displacement delta on loading without adhesion")),
     }
     if adhesion:
@@ -143,9 +143,9 @@ def as_dataset(result) -> xr.Dataset:
             [int(r["usable"]) for r in relaxations], dtype=np.int8), _attrs(
             "1", "path used by the energy method (1), or left out because the centre lifts "
                  "or a free node touches (0)"))
-        coords["relaxation_delta"] = (K, _padded([r["delta"] for r in relaxations]), _attrs(
+        coords["relaxation_delta_mm"] = (K, _padded([r["delta"] for r in relaxations]), _attrs(
             "mm", "rim displacement delta along the relaxation at fixed contact radius"))
-        coords["relaxation_a"] = ("relaxation", np.array([r["a"] for r in relaxations]),
+        coords["relaxation_a_mm"] = ("relaxation", np.array([r["a"] for r in relaxations]),
                                   _attrs("mm", "held contact radius a of the path"))
         coords["relaxation"] = ("relaxation", np.arange(len(relaxations)), _attrs(
             "1", "index of the relaxation path (increasing held contact radius)"))
@@ -161,11 +161,13 @@ def as_dataset(result) -> xr.Dataset:
                               _attrs("N", "JKR pull-off force of a solid sphere of radius R"))
         E = ("gamma", "point")
         for k, (units, long_name) in _CURVES.items():
-            values = _padded([c[k.removesuffix("_eq")].astype(float) for c in curves])
-            (coords if k == "a_eq" else data)[k] = (E, values, _attrs(units, long_name))
+            values = _padded([c[k.removesuffix("_mm").removesuffix("_eq")].astype(float)
+                              for c in curves])
+            (coords if k == "a_eq_mm" else data)[k] = (E, values, _attrs(units, long_name))
         coords["point"] = ("point", np.arange(data["P_eq"][1].shape[1]), _attrs(
             "1", "index along the equilibrium curve (increasing contact radius)"))
-    coords["gamma"] = ("gamma", gammas, _attrs("J m-2", "work of adhesion gamma"))
+    coords["gamma"] = ("gamma", gammas, _attrs("J/m^2", "work of adhesion gamma"))
+    coords["gamma_J_m2"] = ("gamma", gammas, _attrs("J/m^2", "work of adhesion gamma"))
     attrs = dict(
         title=f"shell-adhesion case: R = {inp.R_mm:g} mm, t = {inp.t_mm:g} mm, "
               f"h = {inp.h_mm:g} mm, {inp.material.coefficients(inp.C10_MPa)}",
@@ -191,10 +193,10 @@ def _material_coords(material, C10_MPa) -> dict:
             ("yeoh", "C20_over_C10", "C20", "Yeoh constant C20"),
             ("yeoh", "C30_over_C10", "C30", "Yeoh constant C30")):
         if material.model == model:
-            out[name] = ((), getattr(material, ratio) * C10_MPa, _attrs("MPa", long_name))
+            out[f"{name}_MPa"] = ((), getattr(material, ratio) * C10_MPa, _attrs("MPa", long_name))
     if material.Jm is not None:
         out["Jm"] = ((), material.Jm, _attrs("1", "Gent limit Jm of I1bar - 3"))
     if material.compressible:
-        out["D1"] = ((), material.D1_times_C10 / C10_MPa, _attrs(
+        out["D1_per_MPa"] = ((), material.D1_times_C10 / C10_MPa, _attrs(
             "MPa-1", "compressibility D1, U = (J - 1)^2 / D1"))
     return out

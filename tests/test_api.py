@@ -142,3 +142,45 @@ def test_foreign_catalogue_package_first_on_sys_path(tmp_path):
     assert json.loads(case.stdout)["loading"]["delta_mm"][-1] == pytest.approx(0.5)
     listed = run("catalogue", "list")
     assert listed.returncode == 0 and listed.stdout.startswith("fingerprint"), listed.stderr
+
+
+def test_mooney_rivlin_case_carries_its_material():
+    """--material mooney-rivlin reaches the FE (stiffer than neo-Hookean), and the JSON and
+    the Dataset carry the model and its coefficients in MPa; eta uses mu0 = 2 (C10 + C01)."""
+    from shell_adhesion.solver import theory
+    from shell_adhesion.solver.material import Material
+
+    kw = dict(gamma_J_m2=30, delta_max_mm=1, mesh="coarse", progress=False)
+    mr = sa.solve_case(**BASE, material="mooney-rivlin", C01_MPa=0.06, **kw)
+    nh = sa.solve_case(**BASE, **kw)
+    data = json.loads(mr.to_json())
+    assert data["material"] == dict(model="mooney_rivlin", C10_MPa=0.3, C01_MPa=0.06,
+                                    C20_MPa=0.0, C30_MPa=0.0, Jm=None, D1_per_MPa=0.0)
+    assert json.loads(nh.to_json())["material"]["model"] == "neo_hooke"
+    assert data["provenance"]["material"] == Material("mooney_rivlin", 0.2).as_dict()
+    # same delta, stiffer solid: a larger load
+    assert data["loading"]["P_N"][-1] > json.loads(nh.to_json())["loading"]["P_N"][-1] > 0
+    po = data["pull_off"][0]
+    m = Material("mooney_rivlin", 0.2)
+    assert po["eta"] == pytest.approx(
+        abs(po["fixed_load"]["P_N"]) / theory.shell_law_scale_N(20, 3, 0.3, 30, m), rel=1e-8)
+    ds = mr.to_dataset()
+    assert ds.attrs["material_model"] == "mooney_rivlin"
+    assert float(ds.C01_MPa) == pytest.approx(0.06) and ds.C01_MPa.units == "MPa"
+    assert "mooney_rivlin" in ds.attrs["title"]
+
+
+@pytest.mark.parametrize("change, message", [
+    (dict(material="yeoh", C20_MPa=-0.1), "material: yeoh (C10 = 0.3 MPa, C20 = -0.1 MPa"),
+    (dict(material="yeoh", C01_MPa=0.05), "C01_MPa: 0.05 is not a coefficient of the yeoh"),
+    (dict(material="gent"), "Jm: the gent model needs Jm"),
+    (dict(D1_per_MPa=-1), "D1_per_MPa: -1 /MPa must be >= 0"),
+    (dict(material="ogden"), "material: 'ogden' must be one of neo-hookean, mooney-rivlin"),
+])
+def test_bad_material_raises_before_any_computation(monkeypatch, change, message):
+    def no_fe(*args, **kwargs):
+        raise AssertionError("the FE solver ran on bad input")
+    monkeypatch.setattr(case_module, "solve_paths", no_fe)
+    with pytest.raises(InputError) as e:
+        sa.solve_case(**dict(BASE, **change))
+    assert str(e.value).startswith(message) and "\n" not in str(e.value)

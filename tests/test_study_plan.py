@@ -58,3 +58,24 @@ def test_fingerprint_is_canonical():
     assert family(dict(k, gamma_max_hat=0.02)) == family(k)
     assert family(dict(k, mesh="fine")) != family(k)
     assert '"version"' in canonical_json(k) and '"settings"' in canonical_json(k)
+
+
+def test_material_ratios_are_fe_dimensions_c10_is_not():
+    """A Mooney-Rivlin C10 sweep at a fixed C01/C10 plans one shell; two C01/C10 plan two
+    different keys; neo-Hookean keys are the ones without a material."""
+    from shell_adhesion.solver.material import NEO_HOOKE, Material
+
+    s = study(base=BASE, sweeps=dict(C10_MPa=[0.2, 0.3, 0.4]))
+    mr = [Material.from_MPa("mooney_rivlin", C10, C01_MPa=C10 / 6) for C10 in (0.2, 0.3, 0.4)]
+    assert len(set(mr)) == 1        # C10 x (1, 1/6): one ratio
+    plan = make_plan(s, material=mr[0])
+    assert len(plan.points) == 3 and len(plan.shells) == 1
+    assert plan.shells[0].key["material"] == dict(mr[0].as_dict(), C01_over_C10=pytest.approx(1 / 6))
+    other = make_plan(s, material=Material("mooney_rivlin", C01_over_C10=0.5))
+    fps = {plan.shells[0].fingerprint, other.shells[0].fingerprint,
+           make_plan(s).shells[0].fingerprint}
+    assert len(fps) == 3
+    # neo-Hookean: exactly the key of a call that knows nothing of materials
+    nh = make_plan(s, material=NEO_HOOKE).shells[0]
+    assert "material" not in nh.key and nh.key == make_plan(s).shells[0].key
+    assert nh.key == pathset_key(0.15, 1.0, "no_slip", "coarse", 0.1, nh.gamma_max_hat)

@@ -1,7 +1,8 @@
 """One shell end to end, with units: `shell_adhesion.solve_case` and the `case` command.
 
-Dimensional input (R, t, h and delta_max in mm, C10 in MPa, gamma in J/m^2) is checked by
-the solver's rules (`solver.scaling`, `solver.geometry`, `solver.case.check_gamma`) before
+Dimensional input (R, t, h and delta_max in mm, C10 and the other coefficients of the
+material in MPa, D1 in 1/MPa, gamma in J/m^2) is checked by the solver's rules
+(`solver.scaling`, `solver.geometry`, `solver.material`, `solver.case.check_gamma`) before
 any computation; the FE paths are solved once (`solver.case.solve_paths`) and serve every
 gamma.  The result renders as JSON (what `shell-adhesion case --json` prints) or as an
 xarray Dataset (`study.case_report`).  P > 0 compression, delta > 0 approach.
@@ -16,6 +17,7 @@ from shell_adhesion.solver import __version__
 from shell_adhesion.solver.case import GAMMA_MAX, PathSet, check_gamma, solve_paths
 from shell_adhesion.solver.contact import INTERFACES
 from shell_adhesion.solver.geometry import InputError, check_cap, check_delta_max
+from shell_adhesion.solver.material import MODELS, NEO_HOOKE, Material
 from shell_adhesion.solver.path import Settings
 from shell_adhesion.solver.scaling import check_C10, check_finite, check_R, gamma_hat
 
@@ -27,12 +29,51 @@ GAMMA_HEADROOM = 1.25   # the paths serve up to 1.25 x the largest gamma asked f
 # the name of each input in the Python API (the command line passes its flags instead)
 API_NAMES = dict(R_mm="R_mm", t_mm="t_mm", h_mm="h_mm", C10_MPa="C10_MPa",
                  gamma_J_m2="gamma_J_m2", delta_max_mm="delta_max_mm",
-                 interface="interface", mesh="mesh")
+                 interface="interface", mesh="mesh", material="material", C01_MPa="C01_MPa",
+                 C20_MPa="C20_MPa", C30_MPa="C30_MPa", Jm="Jm", D1_per_MPa="D1_per_MPa")
+# the material models by the solver's names and by the spellings users know
+MODEL_NAMES = {**{m: m for m in MODELS}, "neo-hookean": "neo_hooke", "neo_hookean": "neo_hooke",
+               "neo-hooke": "neo_hooke", "mooney-rivlin": "mooney_rivlin"}
+# the Material's ABAQUS names of the coefficients -> the argument names
+_COEFFICIENT_ARGS = dict(material="material", C01="C01_MPa", C20="C20_MPa", C30="C30_MPa", Jm="Jm", D1="D1_per_MPa")
+
+
+def material_of(model, C10_MPa, C01_MPa=0.0, C20_MPa=0.0, C30_MPa=0.0, Jm=None,
+                D1_per_MPa=0.0, names=None) -> Material:
+    """The checked Material of a model name (MODEL_NAMES) and ABAQUS coefficients in MPa
+    (D1 in 1/MPa); InputError names the field as `names` calls it (default API_NAMES)."""
+    n = dict(API_NAMES, **(names or {}))
+    if not isinstance(model, str) or model.lower() not in MODEL_NAMES:
+        raise InputError(f"{n['material']}: {model!r} must be one of "
+                         "neo-hookean, mooney-rivlin, yeoh, gent")
+    values = dict(C01_MPa=C01_MPa, C20_MPa=C20_MPa, C30_MPa=C30_MPa, D1_per_MPa=D1_per_MPa)
+    units = dict(C01_MPa="MPa", C20_MPa="MPa", C30_MPa="MPa", D1_per_MPa="1/MPa")
+    values = {k: check_finite(v, n[k], units[k]) for k, v in values.items()}
+    if Jm is not None:
+        Jm = check_finite(Jm, n["Jm"], "1")
+    try:
+        return Material.from_MPa(MODEL_NAMES[model.lower()], C10_MPa, Jm=Jm, **values)
+    except InputError as e:
+        head, sep, rest = str(e).partition(": ")
+        if head in _COEFFICIENT_ARGS and sep:
+            raise InputError(f"{n[_COEFFICIENT_ARGS[head]]}: {rest}") from None
+        raise
+
+
+def material_MPa(material: Material, C10_MPa: float) -> dict:
+    """The material as plain data in the user's units: model, C10, C01, C20, C30 [MPa],
+    Jm [1] (None unless gent), D1 [1/MPa]."""
+    return dict(model=material.model, C10_MPa=float(C10_MPa),
+                C01_MPa=material.C01_over_C10 * C10_MPa,
+                C20_MPa=material.C20_over_C10 * C10_MPa,
+                C30_MPa=material.C30_over_C10 * C10_MPa, Jm=material.Jm,
+                D1_per_MPa=material.D1_times_C10 / C10_MPa)
 
 
 @dataclass(frozen=True)
 class CaseInput:
-    """Checked input of one shell: lengths in mm, C10 in MPa, gamma in J/m^2."""
+    """Checked input of one shell: lengths in mm, C10 in MPa, gamma in J/m^2; `material`
+    holds the ratios of the other coefficients to C10 (`material_MPa` gives them in MPa)."""
 
     R_mm: float
     t_mm: float
@@ -42,6 +83,7 @@ class CaseInput:
     gamma_J_m2: tuple = ()
     interface: str = "no_slip"
     mesh: str = "default"
+    material: Material = NEO_HOOKE
 
     def as_dict(self) -> dict:
         return dict(R_mm=self.R_mm, t_mm=self.t_mm, h_mm=self.h_mm, C10_MPa=self.C10_MPa,
@@ -50,11 +92,13 @@ class CaseInput:
 
 
 def case_input(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2=(), delta_max_mm=None,
-               interface="no_slip", mesh="default", names=None) -> CaseInput:
+               interface="no_slip", mesh="default", names=None, *, material="neo_hooke",
+               C01_MPa=0.0, C20_MPa=0.0, C30_MPa=0.0, Jm=None, D1_per_MPa=0.0) -> CaseInput:
     """Check the input of one shell; InputError names the field (as `names` calls it).
 
     `names` maps each argument to the caller's name for it (default API_NAMES; the
-    command line gives its flags).  delta_max_mm defaults to R/4.
+    command line gives its flags).  delta_max_mm defaults to R/4.  The material is
+    checked by `material_of` (model name, coefficients, Drucker stability).
     """
     n = dict(API_NAMES, **(names or {}))
     R = check_finite(R_mm, n["R_mm"], "mm")
@@ -68,6 +112,7 @@ def case_input(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2=(), delta_max_mm=None,
     gammas = tuple(check_finite(g, n["gamma_J_m2"], "J/m^2") for g in gamma_J_m2)
     check_R(R, n["R_mm"])
     check_C10(C10, n["C10_MPa"])
+    solid = material_of(material, C10, C01_MPa, C20_MPa, C30_MPa, Jm, D1_per_MPa, n)
     check_cap(t / R, h / R, _ratio(n["t_mm"], "t", t, R), _ratio(n["h_mm"], "h", h, R))
     check_delta_max(delta_max / R, h / R, _ratio(n["delta_max_mm"], "delta_max", delta_max, R),
                     n["h_mm"])
@@ -78,7 +123,7 @@ def case_input(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2=(), delta_max_mm=None,
         raise InputError(f"{n['interface']}: {interface!r} must be one of {', '.join(INTERFACES)}")
     if mesh not in MESHES:
         raise InputError(f"{n['mesh']}: {mesh!r} must be one of {', '.join(MESHES)}")
-    return CaseInput(R, t, h, C10, delta_max, gammas, interface, mesh)
+    return CaseInput(R, t, h, C10, delta_max, gammas, interface, mesh, solid)
 
 
 def _ratio(name, symbol, value_mm, R_mm):
@@ -126,7 +171,9 @@ class CaseResult:
 
 
 def solve_case(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2=(), *, delta_max_mm=None,
-               interface="no_slip", mesh="default", progress=True) -> CaseResult:
+               interface="no_slip", mesh="default", material="neo_hooke", C01_MPa=0.0,
+               C20_MPa=0.0, C30_MPa=0.0, Jm=None, D1_per_MPa=0.0,
+               progress=True) -> CaseResult:
     """Solve one spherical-cap shell pressed on a rigid plane, and its pull-off.
 
     Parameters
@@ -138,7 +185,8 @@ def solve_case(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2=(), *, delta_max_mm=None,
     h_mm : float
         Depth h from the apex to the base plane [mm], t < h <= R.
     C10_MPa : float
-        Neo-Hookean constant C10 [MPa] (shear modulus 2 C10), from 1e-6 to 1e4.
+        Constant C10 [MPa] of the material (the scaling modulus; neo-Hookean shear modulus
+        2 C10), from 1e-6 to 1e4.
     gamma_J_m2 : float or sequence of float, optional
         Work(s) of adhesion gamma [J/m^2]; each gamma / (C10 R) at most
         ``solver.case.GAMMA_MAX``.  One set of FE paths serves them all.  Without any,
@@ -149,6 +197,16 @@ def solve_case(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2=(), *, delta_max_mm=None,
         Interface model (default no_slip, the paper's cohesive contact).
     mesh : {"coarse", "default", "fine"}
         Mesh density.
+    material : {"neo-hookean", "mooney-rivlin", "yeoh", "gent"}
+        Strain energy, ABAQUS's forms (the solver's names neo_hooke, mooney_rivlin also
+        do); default neo-Hookean.
+    C01_MPa, C20_MPa, C30_MPa : float
+        Mooney-Rivlin C01, Yeoh C20 and C30 [MPa]; only for their model.
+    Jm : float
+        Gent's limit of I1bar - 3 (required by and only for gent).
+    D1_per_MPa : float
+        Compressibility D1 [1/MPa], U = (J - 1)^2 / D1, any model; 0 (default) is
+        incompressible.
     progress : bool
         Show a progress bar on stderr (when it is a terminal).
 
@@ -165,7 +223,9 @@ def solve_case(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2=(), *, delta_max_mm=None,
     solver.ConvergenceError
         If the FE solution cannot go on.
     """
-    inp = case_input(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2, delta_max_mm, interface, mesh)
+    inp = case_input(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2, delta_max_mm, interface, mesh,
+                     material=material, C01_MPa=C01_MPa, C20_MPa=C20_MPa, C30_MPa=C30_MPa,
+                     Jm=Jm, D1_per_MPa=D1_per_MPa)
     return _solve(inp, progress)
 
 
@@ -189,7 +249,8 @@ def _solve(inp: CaseInput, progress: bool) -> CaseResult:
             bar.update(1)
         ps, d, loading = solve_paths(inp.t_mm / R, inp.h_mm / R, inp.interface, inp.mesh,
                                      inp.delta_max_mm / R, gamma_max, relax_paths=bool(g_hats),
-                                     progress=on_state, path_progress=on_path)
+                                     progress=on_state, path_progress=on_path,
+                                     material=inp.material)
     t1 = t0 + ps.stats["loading_s"]
     t2 = t1 + ps.stats["relaxation_s"]
     adhesion = ()
@@ -200,6 +261,7 @@ def _solve(inp: CaseInput, progress: bool) -> CaseResult:
     settings = Settings()
     provenance = {
         "version": __version__, "mesh": inp.mesh, "interface": inp.interface,
+        "material": inp.material.as_dict(),
         "dofs": int(d.ndof), "elements": int(d.capmesh.mesh.nelements),
         "newton_iterations": loading.timer.newton_iterations
         + sum(r.newton_iterations for r in ps.relaxations),

@@ -38,7 +38,7 @@ def _values(result):
     for g, eq, po in result.adhesion:
         conv = dict(force=F, length=L)
         values = {k: float(conv[kind](getattr(po, k))) for k, (_, _, kind) in _PULL_OFF.items()}
-        values["eta"] = theory.eta_of(values["P_star"], R, inp.t_mm, C10, g)
+        values["eta"] = theory.eta_of(values["P_star"], R, inp.t_mm, C10, g, inp.material)
         values["jkr_P_star"] = theory.jkr_P_star_N(R, g)
         curve = dict(a=L(eq.a), delta=L(eq.delta), P=F(eq.P),
                      stable_fixed_load=np.asarray(eq.stable_fixed_load, dtype=bool),
@@ -60,10 +60,14 @@ def _list(x, digits=10):
 
 
 def as_dict(result) -> dict:
-    """Plain JSON-able data: input, loading, and with gamma relaxation, equilibrium and
-    pull_off (one entry per gamma), provenance."""
+    """Plain JSON-able data: input, material (model, coefficients in MPa, D1 in 1/MPa),
+    loading, and with gamma relaxation, equilibrium and pull_off (one entry per gamma),
+    provenance."""
+    from .case import material_MPa
+
     loading, relaxations, adhesion = _values(result)
     out = {"input": result.input.as_dict(),
+           "material": material_MPa(result.input.material, result.input.C10_MPa),
            "loading": {"delta_mm": _list(loading["delta"]), "P_N": _list(loading["P"]),
                        "a_mm": _list(loading["a"]), "U_E_mJ": _list(loading["U"])}}
     if adhesion:
@@ -121,7 +125,9 @@ def as_dataset(result) -> xr.Dataset:
         "R": ((), inp.R_mm, _attrs("mm", "outer radius of curvature R")),
         "t_mm": ((), inp.t_mm, _attrs("mm", "shell thickness t")),
         "h_mm": ((), inp.h_mm, _attrs("mm", "cap depth h")),
-        "C10_MPa": ((), inp.C10_MPa, _attrs("MPa", "neo-Hookean constant C10 (shear modulus / 2)")),
+        "C10_MPa": ((), inp.C10_MPa, _attrs("MPa", "material constant C10 (the scaling "
+                                                   "modulus; neo-Hookean shear modulus / 2)")),
+        **_material_coords(inp.material, inp.C10_MPa),
         "loading_state": ("loading_state", np.arange(n_load),
                           _attrs("1", "index of the loading state (increasing delta)")),
         "loading_delta_mm": ("loading_state", loading["delta"],
@@ -164,10 +170,12 @@ def as_dataset(result) -> xr.Dataset:
     coords["gamma_J_m2"] = ("gamma", gammas, _attrs("J/m^2", "work of adhesion gamma"))
     attrs = dict(
         title=f"shell-adhesion case: R = {inp.R_mm:g} mm, t = {inp.t_mm:g} mm, "
-              f"h = {inp.h_mm:g} mm, C10 = {inp.C10_MPa:g} MPa",
+              f"h = {inp.h_mm:g} mm, {inp.material.coefficients(inp.C10_MPa)}",
         Conventions="CF-1.8",
         source=f"shell-adhesion {prov.get('version', '')}: axisymmetric finite elements of a "
-               "neo-Hookean spherical-cap shell on a rigid plane, Maugis' energy method",
+               f"hyperelastic ({inp.material.model}) spherical-cap shell on a rigid plane, Maugis' "
+               "energy method",
+        material_model=inp.material.model,
         comment="P > 0 compression, delta > 0 approach; curves NaN-padded",
         interface=inp.interface, mesh=inp.mesh, delta_max_mm=inp.delta_max_mm,
         dofs=prov.get("dofs", -1), newton_iterations=prov.get("newton_iterations", -1),
@@ -175,3 +183,20 @@ def as_dataset(result) -> xr.Dataset:
         relaxation_gamma_max_over_C10R=prov.get("relaxation_gamma_max_over_C10R",
                                                 float("nan")))
     return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def _material_coords(material, C10_MPa) -> dict:
+    """Scalar coordinates of the coefficients the material uses besides C10 (MPa, Jm, D1)."""
+    out = {}
+    for model, ratio, name, long_name in (
+            ("mooney_rivlin", "C01_over_C10", "C01", "Mooney-Rivlin constant C01"),
+            ("yeoh", "C20_over_C10", "C20", "Yeoh constant C20"),
+            ("yeoh", "C30_over_C10", "C30", "Yeoh constant C30")):
+        if material.model == model:
+            out[f"{name}_MPa"] = ((), getattr(material, ratio) * C10_MPa, _attrs("MPa", long_name))
+    if material.Jm is not None:
+        out["Jm"] = ((), material.Jm, _attrs("1", "Gent limit Jm of I1bar - 3"))
+    if material.compressible:
+        out["D1_per_MPa"] = ((), material.D1_times_C10 / C10_MPa, _attrs(
+            "MPa-1", "compressibility D1, U = (J - 1)^2 / D1"))
+    return out

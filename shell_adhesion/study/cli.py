@@ -1,6 +1,8 @@
 """The `shell-adhesion` command line.
 
     shell-adhesion case --R 20 --t 3 --h 20 --C10 0.3 [--gamma 30 ...] [--json]
+        [--material neo-hookean|mooney-rivlin|yeoh|gent] [--C01 C] [--C20 C] [--C30 C]
+        [--Jm J] [--D1 D]
     shell-adhesion run workflow.yaml --out results/ [--scheduler ADDRESS] [--catalogue DIR]
     shell-adhesion catalogue list|rebuild [--catalogue DIR]
     shell-adhesion tables results/paper.nc [--format md|csv|tex] [--table cases|paper|all] [--out FILE]
@@ -28,7 +30,10 @@ FIGURE_FORMATS = ("png", "pdf", "svg")
 # the flag of each input of `case` (study.case.case_input names the fields this way)
 CASE_FLAGS = dict(R_mm="--R", t_mm="--t", h_mm="--h", C10_MPa="--C10",
                   gamma_J_m2="--gamma", delta_max_mm="--delta-max", interface="--interface",
-                  mesh="--mesh")
+                  mesh="--mesh", material="--material", C01_MPa="--C01", C20_MPa="--C20",
+                  C30_MPa="--C30", Jm="--Jm", D1_per_MPa="--D1")
+MATERIAL_FLAGS = (("C01", "C01_MPa", "MPa"), ("C20", "C20_MPa", "MPa"), ("C30", "C30_MPa", "MPa"),
+                  ("Jm", "Jm", "1"), ("D1", "D1_per_MPa", "1/MPa"))
 
 
 class _Parser(argparse.ArgumentParser):
@@ -56,13 +61,16 @@ def _number(flag, text, unit):
 
 
 def _run_case(ns):
+    solid = {arg: _number(f"--{flag}", getattr(ns, flag), unit)
+             for flag, arg, unit in MATERIAL_FLAGS if getattr(ns, flag) is not None}
     inp = case_api.case_input(_number("--R", ns.R, "mm"), _number("--t", ns.t, "mm"),
                      _number("--h", ns.h, "mm"), _number("--C10", ns.C10, "MPa"),
                      [_number("--gamma", g, "J/m^2") for g in ns.gamma or []],
                      None if ns.delta_max is None else _number("--delta-max", ns.delta_max, "mm"),
-                     ns.interface, ns.mesh, names=CASE_FLAGS)
+                     ns.interface, ns.mesh, names=CASE_FLAGS, material=ns.material, **solid)
     result = case_api.solve_case(inp.R_mm, inp.t_mm, inp.h_mm, inp.C10_MPa, inp.gamma_J_m2,
-                        delta_max_mm=inp.delta_max_mm, interface=inp.interface, mesh=inp.mesh)
+                        delta_max_mm=inp.delta_max_mm, interface=inp.interface, mesh=inp.mesh,
+                        material=ns.material, **solid)
     if ns.json:
         print(result.to_json())
     else:
@@ -77,7 +85,7 @@ def _fmt(v, unit=" mm"):
 def _print_case(out):
     inp, ld = out["input"], out["loading"]
     print(f"shell R = {inp['R_mm']:g} mm, t = {inp['t_mm']:g} mm, h = {inp['h_mm']:g} mm, "
-          f"C10 = {inp['C10_MPa']:g} MPa, interface {inp['interface']}, mesh {inp['mesh']}")
+          f"{_material_text(out['material'])}, interface {inp['interface']}, mesh {inp['mesh']}")
     print(f"{'delta [mm]':>12} {'P [N]':>12} {'a [mm]':>10}")
     n = len(ld["delta_mm"])
     for i in sorted(set(list(range(0, n, max(1, n // 15))) + [n - 1])):
@@ -90,6 +98,18 @@ def _print_case(out):
               f"a0 = {_fmt(po['a0_mm'])}; eta = {po['eta']:.3g}")
     p = out["provenance"]
     print(f"{p['dofs']} dofs, {p['newton_iterations']} Newton iterations, {p['wall_s']:.1f} s")
+
+
+def _material_text(m):
+    """'C10 = 0.3 MPa' (neo-Hookean) or 'mooney_rivlin, C10 = 0.3 MPa, C01 = 0.05 MPa'."""
+    parts = [f"C10 = {m['C10_MPa']:g} MPa"]
+    parts += [f"{k} = {m[k + '_MPa']:g} MPa" for k, model in
+              (("C01", "mooney_rivlin"), ("C20", "yeoh"), ("C30", "yeoh")) if m["model"] == model]
+    if m["Jm"] is not None:
+        parts.append(f"Jm = {m['Jm']:g}")
+    if m["D1_per_MPa"]:
+        parts.append(f"D1 = {m['D1_per_MPa']:g} /MPa")
+    return ", ".join(parts if m["model"] == "neo_hooke" else [m["model"], *parts])
 
 
 def _workers(text):
@@ -212,7 +232,17 @@ def _parser():
     case.add_argument("--R", required=True, help="outer radius of curvature R [mm]")
     case.add_argument("--t", required=True, help="shell thickness t [mm], 0 < t <= R (t = R: solid)")
     case.add_argument("--h", required=True, help="depth h from apex to base plane [mm], t < h <= R")
-    case.add_argument("--C10", required=True, help="neo-Hookean constant C10 [MPa] (shear modulus 2 C10)")
+    case.add_argument("--C10", required=True, help="material constant C10 [MPa] (neo-Hookean "
+                                                    "shear modulus 2 C10)")
+    case.add_argument("--material", default="neo-hookean", metavar="MODEL",
+                      help="strain energy (ABAQUS's forms): neo-hookean (default), "
+                           "mooney-rivlin, yeoh or gent")
+    case.add_argument("--C01", default=None, help="Mooney-Rivlin constant C01 [MPa]")
+    case.add_argument("--C20", default=None, help="Yeoh constant C20 [MPa]")
+    case.add_argument("--C30", default=None, help="Yeoh constant C30 [MPa]")
+    case.add_argument("--Jm", default=None, help="Gent limit Jm of I1bar - 3 (gent only)")
+    case.add_argument("--D1", default=None, help="compressibility D1 [1/MPa], any model "
+                                                 "(default 0: incompressible)")
     case.add_argument("--delta-max", dest="delta_max", default=None,
                       help="largest rim approach delta [mm] (default R/4)")
     case.add_argument("--gamma", action="append",

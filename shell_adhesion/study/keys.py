@@ -3,7 +3,10 @@
 `pathset_key` is the key of one set of FE paths: the dimensionless shell, the interface,
 the mesh, how far the paths go (delta_max / R, the largest gamma / (C10 R) they serve),
 the solver tolerances and relaxation rule, the stored layout, the package version and a
-hash of the solver's source.  C10, R and gamma are not in it.  `relaxation_part` names one
+hash of the solver's source, and for a solid other than the incompressible neo-Hookean one
+its `solver.material.Material.as_dict()` (the ratios C01/C10, C20/C10, C30/C10, Jm and
+D1 C10: FE dimensions; neo-Hookean keys carry no material field, as before).  C10, R and
+gamma are not in it.  `relaxation_part` names one
 relaxation path of a set by its loaded start state, so a set killed half-way keeps its
 finished paths (catalogue parts stored under the set's fingerprint).
 """
@@ -15,6 +18,7 @@ from pathlib import Path
 from shell_adhesion import solver
 from shell_adhesion.catalogue import fingerprint
 from shell_adhesion.solver import case
+from shell_adhesion.solver.material import NEO_HOOKE, Material
 from shell_adhesion.solver.mesh import mesh_spec
 from shell_adhesion.solver.path import Settings, State
 from shell_adhesion.solver.pathset_dataset import LAYOUT
@@ -30,10 +34,10 @@ def solver_source_sha256() -> str:
 
 
 def pathset_key(t_over_R, h_over_R, interface, mesh, delta_max_over_R, gamma_max_hat,
-                settings: Settings = None) -> dict:
+                settings: Settings = None, material: Material = NEO_HOOKE) -> dict:
     """Key of the FE path set of one dimensionless shell (validated names and values)."""
     settings = settings if settings is not None else Settings()
-    return {
+    key = {
         "kind": "shell-adhesion path set",
         "layout": LAYOUT,
         "t_over_R": float(t_over_R),
@@ -48,6 +52,9 @@ def pathset_key(t_over_R, h_over_R, interface, mesh, delta_max_over_R, gamma_max
         "version": solver.__version__,
         "solver_source": solver_source_sha256(),
     }
+    if material != NEO_HOOKE:
+        key["material"] = material.as_dict()
+    return key
 
 
 def relaxation_part(start: State, views: bool) -> str:

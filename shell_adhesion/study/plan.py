@@ -7,12 +7,18 @@ gamma / (C10 R) asked of it; that value is rounded up to the ladder 1, 2, 5 x 10
 studies with nearby values share their paths.  The catalogue may serve a key with a set
 that reaches further (larger delta_max or gamma_max); `restrict` cuts such a set back to
 the requested delta_max, so the results do not depend on what else the catalogue holds.
+
+Another solid (`solver.material.Material`) enters the plan by its ratios to C10 (C01/C10,
+C20/C10, C30/C10, Jm, D1 C10): they are FE dimensions and part of every shell's key, while
+C10 stays the scaling modulus, so a C10 sweep at fixed ratios still needs one set of paths
+per shell.
 """
 from dataclasses import dataclass, replace
 import math
 
 from shell_adhesion.catalogue import fingerprint
 from shell_adhesion.solver.case import PathSet
+from shell_adhesion.solver.material import NEO_HOOKE, Material
 from shell_adhesion.solver.path import Settings
 from shell_adhesion.solver.scaling import gamma_hat
 
@@ -45,6 +51,7 @@ class Shell:
     gamma_hat_needed: float     # largest gamma / (C10 R) the study asks of this shell
     key: dict                   # catalogue key (gamma_max_hat: the ladder value)
     fingerprint: str
+    material: Material = NEO_HOOKE
 
     @property
     def gamma_max_hat(self) -> float:
@@ -68,8 +75,10 @@ class Plan:
         raise KeyError((t_over_R, h_over_R))
 
 
-def make_plan(study: Study, settings: Settings = Settings()) -> Plan:
-    """The distinct path sets of a validated study, with their catalogue keys."""
+def make_plan(study: Study, settings: Settings = Settings(),
+              material: Material = NEO_HOOKE) -> Plan:
+    """The distinct path sets of a validated study, with their catalogue keys; `material`
+    (ratios to C10) is the solid of every shell."""
     points = sorted({tuple(p[f][0] for f in FACTORS) for p in requested(study)})
     axes = {f: tuple(sorted({p[i] for p in points})) for i, f in enumerate(FACTORS)}
     need = {}
@@ -79,8 +88,8 @@ def make_plan(study: Study, settings: Settings = Settings()) -> Plan:
     shells = []
     for (t, h), g in sorted(need.items()):
         key = pathset_key(t, h, study.interface, study.mesh, study.delta_max_over_R,
-                          gamma_max_bucket(g), settings)
-        shells.append(Shell(t, h, g, key, fingerprint(key)))
+                          gamma_max_bucket(g), settings, material)
+        shells.append(Shell(t, h, g, key, fingerprint(key), material))
     return Plan(study, axes, tuple(points), tuple(shells), settings)
 
 

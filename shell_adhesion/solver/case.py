@@ -154,6 +154,18 @@ class PathSet:
         return tuple(sorted((r for r in self.relaxations
                              if not r.centre_lifts and not r.penetration), key=lambda r: r.a))
 
+    def G_reached(self):
+        """(a_pair, G_max): for each pair of neighbouring usable paths, the radius of its
+        midpoint and the largest G / (C10 R) its relaxations reached (the largest gamma
+        that pair can put in equilibrium)."""
+        return G_reached(self.relaxations)
+
+    def unreached(self, gamma: float) -> np.ndarray:
+        """Pair radii a / R whose relaxations stopped before G reached gamma / (C10 R):
+        the equilibrium curve for gamma has no point there (it is bridged)."""
+        a, G = self.G_reached()
+        return a[~(G >= gamma)]
+
     def inverted(self, a) -> np.ndarray:
         """True where an equilibrium point at contact radius a / R is affected by a
         contact-zone inversion: it lies between two usable paths that bridge an inverted
@@ -253,6 +265,18 @@ def pathset_of(t, h, interface, mesh, delta_max, gamma_max, loading, relaxations
                    loading.array("U"), loading.array("joined"), relaxations, stats, views)
 
 
+def G_reached(relaxations):
+    """(a_pair, G_max) of the usable relaxation paths (see PathSet.G_reached)."""
+    usable = sorted((r for r in relaxations if not r.centre_lifts and not r.penetration),
+                    key=lambda r: r.a)
+    if len(usable) < 2:
+        return np.zeros(0), np.zeros(0)
+    surf = energy_surface([(r.a, r.delta, r.P, r.U) for r in usable])
+    with np.errstate(invalid="ignore"):
+        G = np.array([np.nanmax(g) if np.isfinite(g).any() else np.nan for g in surf.G])
+    return surf.a_pair, G
+
+
 def provenance_stats(loading: LoadingPath, relaxations) -> dict:
     """Worst element quality and where the contact zone inverted (dimensionless; None
     where there is no inversion).
@@ -283,6 +307,8 @@ def provenance_stats(loading: LoadingPath, relaxations) -> dict:
     else:
         stage, where = None, (None, None)
     out.update(inversion_stage=stage, inversion_delta=where[0], inversion_a=where[1])
+    _, G = G_reached(relaxations)
+    out["G_max_reached"] = float(np.nanmin(G)) if np.isfinite(G).any() else None
     return out
 
 

@@ -41,7 +41,7 @@ class Settings:
     max_iter: int = 12
     step_max: float = 0.02    # largest delta increment
     step_min: float = 1e-9
-    max_states: int = 20000   # states per path (loading or relaxation): a bound, never reached
+    max_states: int = 20000   # loading states: a bound a failure cannot defeat, never reached
     max_events_per_node: int = 4   # contact events per outer node during loading
     max_relocations: int = 20      # re-located events within one loading step
     max_points: int = 400     # states per relaxation path

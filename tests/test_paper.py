@@ -28,7 +28,7 @@ def loading_P(states, delta):
 
 @pytest.fixture(scope="module")
 def base():
-    return base_case("default", "no_slip", 0.006, 0.27)
+    return base_case("default", "no_slip", 0.006, 0.25)
 
 
 @pytest.fixture(scope="module")

@@ -2,16 +2,19 @@
 
 Public entry points (dimensionless inside, see `solver.scaling` for units):
 `solve_paths` (loading + relaxation paths of one shell), `PathSet.pull_off`,
-`solver.theory` (Hertz, JKR, eq. 3), `solver.geometry.check_cap`, `Material` (the solid).
+`solver.theory` (Hertz, JKR, eq. 3), `solver.geometry.check_cap` / `check_delta_max` /
+`check_gamma` (the supported domain), `solver.quality` (element quality of a state),
+`Material` (the solid).
 """
 from .case import (GAMMA_MAX, PathSet, Relaxation, relaxation_starts, relaxation_task,
                    solve_loading, solve_paths)
 from .contact import INTERFACES
-from .geometry import Cap, InputError, check_cap
+from .geometry import Cap, InputError, check_cap, check_delta_max, check_gamma
 from .material import MODELS, NEO_HOOKE, Material
-from .path import ConvergenceError, Settings
+from .path import ConvergenceError, QualityError, Settings
 
 __version__ = "0.1.0"
 __all__ = ["GAMMA_MAX", "PathSet", "Relaxation", "relaxation_starts", "relaxation_task",
            "solve_loading", "solve_paths", "INTERFACES", "Cap", "InputError", "check_cap",
-           "ConvergenceError", "Settings", "MODELS", "NEO_HOOKE", "Material", "__version__"]
+           "check_delta_max", "check_gamma", "ConvergenceError", "QualityError", "Settings",
+           "MODELS", "NEO_HOOKE", "Material", "__version__"]

@@ -6,38 +6,22 @@ A `PathSet` holds only arrays, so it can be stored, shipped to other processes a
 post-processed for any C10, R and gamma (DESIGN.md section 3).
 """
 from dataclasses import dataclass, field, replace
+import math
 import time
 
 import numpy as np
 
 from .energy import EnergySurface, energy_surface, equilibrium, pull_off
 from .forms import Discretisation, discretise
-from .geometry import Cap, InputError
+from .contact import check_interface
+from .geometry import GAMMA_MAX, Cap, InputError, check_delta_max, check_gamma
 from .material import NEO_HOOKE, Material
 from .mesh import CapMesh, cap_mesh, mesh_spec
 from .path import LoadingPath, RelaxationPath, Settings, State, load, relax
 from .postprocess import StressMap, profile, spread, stress_map
 
-GAMMA_MAX = 0.03        # default largest gamma / (C10 R) the relaxation paths must serve
 STEPS_PER_PATH = 8      # relaxation steps down to the stop criterion (about)
 G_SAFETY = 3.0          # relax until the flat-punch estimate of G exceeds G_SAFETY * gamma_max
-
-
-def check_gamma(gamma_hat: float, gamma_max: float = GAMMA_MAX, name: str = "gamma/(C10 R)",
-                given: str = "", scales: str = ""):
-    """Raise InputError unless 0 < gamma / (C10 R) <= gamma_max (what the paths serve).
-
-    `name` is the caller's field, `given` the value as the user wrote it (e.g. "900 J/m^2")
-    and `scales` what made it dimensionless (e.g. "with C10 = 0.3 MPa and R = 20 mm").
-    """
-    if not gamma_hat > 0:
-        raise InputError(f"{name}: {given or format(gamma_hat, 'g')} must be > 0")
-    if gamma_hat > gamma_max * (1 + 1e-12):
-        shown = f"{gamma_hat:.4g}"
-        if given:
-            shown = " ".join(w for w in (given, scales) if w) + f" gives gamma/(C10 R) = {shown}"
-        raise InputError(f"{name}: {shown}, which must be <= {gamma_max:g} (the range of the "
-                         "relaxation paths)")
 
 
 def flat_punch_G(start: State, s: State) -> float:
@@ -78,11 +62,19 @@ def has_hole(state: State) -> bool:
 
 def relax_from(d: Discretisation, interface: str, start: State, gamma_max: float = GAMMA_MAX,
                settings: Settings = Settings()) -> RelaxationPath:
-    """Relax one loaded state until the estimated G exceeds G_SAFETY * gamma_max."""
+    """Relax one loaded state until the estimated G exceeds G_SAFETY * gamma_max.
+
+    The step comes from the flat-punch estimate, which needs a positive start stiffness;
+    a start that softens (dP/ddelta <= 0: the shell is buckling under its contact) is
+    relaxed in steps of settings.step_max / STEPS_PER_PATH instead.
+    """
     G_stop = G_SAFETY * gamma_max
     k0 = start.dP_ddelta
-    dP_total = np.sqrt(G_stop * 4 * np.pi * start.a ** 2 * k0)
-    step = min(dP_total / k0 / STEPS_PER_PATH, settings.step_max)
+    if k0 > 0 and math.isfinite(k0):
+        dP_total = np.sqrt(G_stop * 4 * np.pi * start.a ** 2 * k0)
+        step = min(dP_total / k0 / STEPS_PER_PATH, settings.step_max)
+    else:
+        step = settings.step_max / STEPS_PER_PATH
     return relax(d, interface, start, lambda s: flat_punch_G(start, s) >= G_stop, step, settings)
 
 
@@ -97,9 +89,13 @@ class Relaxation:
     dP_ddelta: np.ndarray
     ended_by: str
     penetration: bool
-    centre_lifts: bool
+    centre_lifts: bool      # the contact zone inverted: its centre left the plane
     newton_iterations: int
     views: tuple = ()       # Profile and StressMap of the path, when asked for (figures)
+    inversion_delta: float = np.nan  # delta / R where the centre left the plane (NaN: never)
+    J_min: float = 1.0      # worst pointwise J and in-plane det F over the path
+    J_max: float = 1.0
+    detF_min: float = 1.0
 
     @property
     def usable(self) -> bool:
@@ -109,10 +105,14 @@ class Relaxation:
     @classmethod
     def of(cls, path: RelaxationPath, d: Discretisation = None):
         """The path's arrays; with `d`, also its views (see `relaxation_views`)."""
+        start_off = has_hole(path.start) or path.start.centre_off
+        inversion = path.start.delta if start_off else path.inversion_delta
+        q = path.quality
         return cls(path.start.a, path.array("delta"), path.array("P"), path.array("U"),
                    path.array("dP_ddelta"), path.ended_by, path.penetration,
-                   path.centre_lifts or has_hole(path.start), path.timer.newton_iterations,
-                   relaxation_views(d, path) if d is not None else ())
+                   path.centre_lifts or start_off, path.timer.newton_iterations,
+                   relaxation_views(d, path) if d is not None else (),
+                   float(inversion), q.J_min, q.J_max, q.detF_min)
 
 
 def loading_views(d: Discretisation, loading: LoadingPath) -> tuple:
@@ -152,8 +152,44 @@ class PathSet:
     views: tuple = ()               # Profile and StressMap states kept for figures
 
     def surface(self) -> EnergySurface:
-        usable = [r for r in self.relaxations if r.usable]
-        return energy_surface([(r.a, r.delta, r.P, r.U) for r in sorted(usable, key=lambda r: r.a)])
+        return energy_surface([(r.a, r.delta, r.P, r.U) for r in self.usable()])
+
+    def usable(self) -> tuple:
+        """Relaxation paths the energy method uses (by increasing a): those whose contact
+        zone stays a disc on the plane (no inversion, no penetration outside it)."""
+        return tuple(sorted((r for r in self.relaxations if r.usable), key=lambda r: r.a))
+
+    def G_reached(self):
+        """(a_pair, G_max): for each pair of neighbouring usable paths, the radius of its
+        midpoint and the largest G / (C10 R) its relaxations reached (the largest gamma
+        that pair can put in equilibrium)."""
+        return G_reached(self.relaxations)
+
+    def unreached(self, gamma: float) -> np.ndarray:
+        """Pair radii a / R whose relaxations stopped before G reached gamma / (C10 R):
+        the equilibrium curve for gamma has no point there (it is bridged)."""
+        a, G = self.G_reached()
+        return a[~(G >= gamma)]
+
+    def inverted(self, a) -> np.ndarray:
+        """True where an equilibrium point at contact radius a / R is affected by a
+        contact-zone inversion: it lies between two usable paths that bridge an inverted
+        one, or at or beyond the radius where the loading inverted."""
+        a = np.atleast_1d(np.asarray(a, dtype=float))
+        out = np.zeros(a.shape, dtype=bool)
+        a_use = np.array([r.a for r in self.usable()])
+        for r in self.relaxations:
+            if not r.centre_lifts:
+                continue
+            below = a_use[a_use < r.a]
+            above = a_use[a_use > r.a]
+            lo = below.max() if len(below) else -np.inf
+            hi = above.min() if len(above) else np.inf
+            out |= (a > lo) & (a < hi)
+        a_inv = self.stats.get("inversion_a_loading")
+        if a_inv is not None:
+            out |= a >= a_inv
+        return out
 
     def pull_off(self, gamma: float, surface: EnergySurface = None):
         """Equilibrium curve and pull-off for gamma / (C10 R)."""
@@ -164,8 +200,12 @@ class PathSet:
 
 def solve_loading(t: float, h: float, interface: str, mesh: str, delta_max: float,
                   settings: Settings = Settings(), progress=None, material: Material = NEO_HOOKE):
-    """Discretisation and loading path of one dimensionless shell."""
-    cm = cap_mesh(Cap(t, h), mesh_spec(mesh))
+    """Discretisation and loading path of one dimensionless shell; a shell or delta_max
+    outside the supported domain (solver.geometry) raises InputError (a ValueError)."""
+    cap = Cap(t, h)
+    check_delta_max(delta_max, h)
+    check_interface(interface)
+    cm = cap_mesh(cap, mesh_spec(mesh))
     d = discretise(cm, material=material)
     return d, load(d, interface, delta_max, settings, progress)
 
@@ -182,6 +222,8 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
     relaxation paths in parallel.  `material` (solver.material.Material, ratios to C10)
     is the solid; neo-Hooke by default.
     """
+    if not (isinstance(gamma_max, (int, float)) and math.isfinite(gamma_max) and gamma_max > 0):
+        raise InputError(f"gamma_max: {gamma_max!r} must be a finite number > 0 (gamma/(C10 R))")
     t0 = time.perf_counter()
     d, loading = solve_loading(t, h, interface, mesh, delta_max, settings, progress, material)
     t1 = time.perf_counter()
@@ -215,13 +257,62 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
 def pathset_of(t, h, interface, mesh, delta_max, gamma_max, loading, relaxations, stats,
                views=()):
     """The PathSet of a loading path, its Relaxations and the loading views; the
-    relaxations' views move to the set's (profiles, then stress maps, each in stage order)."""
+    relaxations' views move to the set's (profiles, then stress maps, each in stage order).
+    The set's stats gain the element quality and the contact-zone inversion
+    (`provenance_stats`)."""
     views = tuple(views) + tuple(v for r in relaxations for v in r.views)
     views = tuple(sorted(views, key=lambda v: isinstance(v, StressMap)))  # profiles first
     relaxations = tuple(replace(r, views=()) if r.views else r for r in relaxations)
+    stats = {**provenance_stats(loading, relaxations), **stats}
     return PathSet(t, h, interface, mesh, delta_max, gamma_max,
                    loading.array("delta"), loading.array("P"), loading.array("a"),
                    loading.array("U"), loading.array("joined"), relaxations, stats, views)
+
+
+def G_reached(relaxations):
+    """(a_pair, G_max) of the usable relaxation paths (see PathSet.G_reached)."""
+    usable = sorted((r for r in relaxations if r.usable), key=lambda r: r.a)
+    if len(usable) < 2:
+        return np.zeros(0), np.zeros(0)
+    surf = energy_surface([(r.a, r.delta, r.P, r.U) for r in usable])
+    with np.errstate(invalid="ignore"):
+        G = np.array([np.nanmax(g) if np.isfinite(g).any() else np.nan for g in surf.G])
+    return surf.a_pair, G
+
+
+def provenance_stats(loading: LoadingPath, relaxations) -> dict:
+    """Worst element quality and where the contact zone inverted (dimensionless; None
+    where there is no inversion).
+
+    J_min, J_max, detF_min, distortion_min: over the loading states (refused beyond
+    solver.quality's thresholds); relaxation_J_min, relaxation_J_max, relaxation_detF_min:
+    over the relaxation paths (their held zone's edge is a crack tip, so J there is
+    reported, not refused).  inversion_delta, inversion_a: the first inversion, on loading
+    if the loading inverts, else on the relaxation path of smallest a that does
+    (inversion_stage says which); inversion_delta_loading, inversion_a_loading: the
+    loading's own; inverted_paths: how many relaxation paths inverted.
+    """
+    q = loading.quality
+    out = dict(q.as_dict())
+    if relaxations:
+        out.update(relaxation_J_min=min(r.J_min for r in relaxations),
+                   relaxation_J_max=max(r.J_max for r in relaxations),
+                   relaxation_detF_min=min(r.detF_min for r in relaxations))
+    inv = loading.inversion
+    out.update(inversion_delta_loading=None if inv is None else float(inv.delta),
+               inversion_a_loading=None if inv is None else float(inv.a),
+               inverted_paths=sum(bool(r.centre_lifts) for r in relaxations))
+    flipped = sorted((r for r in relaxations if r.centre_lifts), key=lambda r: r.a)
+    if inv is not None:
+        stage, where = "loading", (float(inv.delta), float(inv.a))
+    elif flipped:
+        stage, where = "relaxation", (float(flipped[0].inversion_delta), float(flipped[0].a))
+    else:
+        stage, where = None, (None, None)
+    out.update(inversion_stage=stage, inversion_delta=where[0], inversion_a=where[1])
+    _, G = G_reached(relaxations)
+    out["G_max_reached"] = float(np.nanmin(G)) if np.isfinite(G).any() else None
+    return out
 
 
 def relaxation_task(t: float, h: float, interface: str, mesh: str, start: State,

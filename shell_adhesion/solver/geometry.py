@@ -7,8 +7,6 @@ the substrate z = 0 at the origin.  t = 1 is a solid cap (no cavity).
 from dataclasses import dataclass
 import math
 
-DELTA_MAX_LIMIT = 0.5   # deepest loading delta_max / R the tool accepts
-
 
 class InputError(ValueError):
     """Bad input: the message names the field, the value and the rule."""
@@ -57,11 +55,28 @@ class Cap:
         return outer - math.pi * hi ** 2 * (3.0 * ri - hi) / 3.0
 
 
+# The supported domain (DESIGN.md section 8): requests outside it are refused before any
+# computation.  Dimensionless: lengths / R, gamma / (C10 R).
+T_MIN = 0.02          # thinnest shell, t / R
+H_MIN = 0.2           # shallowest cap, h / R (and h > t for a shell)
+DELTA_MAX = 0.25      # deepest loading, delta / R
+GAMMA_MAX = 0.03      # largest gamma / (C10 R) the relaxation paths serve
+
+
+def _finite(name, value):
+    if not isinstance(value, (int, float)) or isinstance(value, bool) or not math.isfinite(value):
+        raise InputError(f"{name}: {value!r} must be a finite number")
+
+
 def check_cap(t_over_R, h_over_R, t_name="t/R", h_name="h/R"):
-    """Raise InputError unless 0 < t <= 1 and (t < h <= 1, or t = 1 and 0 < h <= 1)."""
+    """Raise InputError unless the cap is valid and inside the supported domain.
+
+    Valid: 0 < t <= 1, h <= 1 and t < h (or t = 1, a solid cap).  Supported:
+    t/R in [T_MIN, 1] and h/R in [max(t/R, H_MIN), 1] (a solid cap, t = 1, any h/R in
+    [H_MIN, 1]).
+    """
     for name, value in ((t_name, t_over_R), (h_name, h_over_R)):
-        if not isinstance(value, (int, float)) or isinstance(value, bool) or not math.isfinite(value):
-            raise InputError(f"{name}: {value!r} must be a finite number")
+        _finite(name, value)
     if not 0.0 < t_over_R <= 1.0:
         raise InputError(f"{t_name}: {t_over_R:g} must satisfy 0 < t <= R")
     if not 0.0 < h_over_R <= 1.0:
@@ -69,13 +84,42 @@ def check_cap(t_over_R, h_over_R, t_name="t/R", h_name="h/R"):
     if t_over_R < 1.0 and h_over_R <= t_over_R:
         raise InputError(
             f"{h_name}: {h_over_R:g} must be > t ({t_over_R:g}) unless t = R (solid cap)")
+    if t_over_R < T_MIN:
+        raise InputError(f"{t_name}: {t_over_R:g} is outside the supported domain "
+                         f"t/R >= {T_MIN:g} (thinner shells are not solved reliably)")
+    if h_over_R < H_MIN:
+        raise InputError(f"{h_name}: {h_over_R:g} is outside the supported domain "
+                         f"h/R >= {H_MIN:g} (shallower caps are not solved reliably)")
 
 
-def check_delta_max(delta_max_over_R, h_over_R, name="delta_max/R", h_name="h/R"):
-    """Raise InputError unless 0 < delta_max <= DELTA_MAX_LIMIT and delta_max < h (the rim
-    stays above the plane), all in units of R."""
-    if not 0.0 < delta_max_over_R <= DELTA_MAX_LIMIT:
-        rule = "must be > 0" if not delta_max_over_R > 0 else f"must be <= {DELTA_MAX_LIMIT:g}"
-        raise InputError(f"{name}: {delta_max_over_R:g} {rule}")
-    if not delta_max_over_R < h_over_R:
+def check_delta_max(delta_max_over_R, h_over_R=None, name="delta_max/R", h_name="h/R"):
+    """Raise InputError unless 0 < delta_max/R <= DELTA_MAX (and < h/R if given: the rim
+    stays above the plane)."""
+    _finite(name, delta_max_over_R)
+    if not delta_max_over_R > 0:
+        raise InputError(f"{name}: {delta_max_over_R:g} must be > 0")
+    if delta_max_over_R > DELTA_MAX * (1 + 1e-12):
+        raise InputError(f"{name}: {delta_max_over_R:g} is outside the supported domain "
+                         f"delta/R <= {DELTA_MAX:g}")
+    if h_over_R is not None and delta_max_over_R >= h_over_R:
         raise InputError(f"{name}: {delta_max_over_R:g} must be < h/R ({h_over_R:g}, {h_name})")
+
+
+def check_gamma(gamma_hat, gamma_max=GAMMA_MAX, name="gamma/(C10 R)", given="", scales=""):
+    """Raise InputError unless 0 < gamma / (C10 R) <= gamma_max (at most GAMMA_MAX, the
+    supported domain; less for paths built for a smaller range).
+
+    `name` is the caller's field, `given` the value as the user wrote it (e.g. "900 J/m^2")
+    and `scales` what made it dimensionless (e.g. "with C10 = 0.3 MPa and R = 20 mm").
+    """
+    _finite(name, gamma_hat)
+    if not gamma_hat > 0:
+        raise InputError(f"{name}: {given or format(gamma_hat, 'g')} must be > 0")
+    limit = min(gamma_max, GAMMA_MAX)
+    if gamma_hat > limit * (1 + 1e-12):
+        shown = f"{gamma_hat:.4g}"
+        if given:
+            shown = " ".join(w for w in (given, scales) if w) + f" gives gamma/(C10 R) = {shown}"
+        why = ("the supported domain" if limit == GAMMA_MAX
+               else "the range these relaxation paths serve")
+        raise InputError(f"{name}: {shown}, which must be <= {limit:g} ({why})")

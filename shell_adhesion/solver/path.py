@@ -9,6 +9,7 @@ A contact event is located exactly by a bordered Newton: delta becomes an unknow
 node joins the contact is found without bisection.
 """
 from dataclasses import dataclass, field, replace
+import math
 import time
 
 import numpy as np
@@ -18,10 +19,16 @@ import scipy.sparse.linalg as spla
 from .contact import (Constraints, constraints, contact_reactions, deformed_radius, gaps,
                       rim_load)
 from .forms import Discretisation, strain_energy, tangent
+from .quality import Quality, quality, worst
 
 
 class ConvergenceError(RuntimeError):
-    """Newton did not converge even at the smallest step."""
+    """No equilibrium could be found: the message says where and why."""
+
+
+class QualityError(ConvergenceError):
+    """A converged state's elements are inverted or too distorted, or its pointwise J is
+    too far from 1, for the result to be trusted (see solver.quality)."""
 
 
 @dataclass(frozen=True)
@@ -34,6 +41,10 @@ class Settings:
     max_iter: int = 12
     step_max: float = 0.02    # largest delta increment
     step_min: float = 1e-9
+    max_states: int = 20000   # loading states: a bound a failure cannot defeat, never reached
+    max_events_per_node: int = 4   # contact events per outer node during loading
+    max_relocations: int = 20      # re-located events within one loading step
+    max_points: int = 400     # states per relaxation path
 
 
 @dataclass(frozen=True, eq=False)
@@ -50,6 +61,8 @@ class State:
     dP_ddelta: float = np.nan  # dP/ddelta with this state's held set (right derivative)
     residuals: tuple = ()     # Newton residual history of the solve that produced it
     dP_ddelta_left: float = np.nan  # dP/ddelta before the joining node was held
+    quality: Quality = None   # element quality of the state (solver.quality)
+    centre_off: bool = False  # the centre of the contact zone has left (or is pulled off) the plane
 
 
 @dataclass
@@ -75,6 +88,16 @@ class LoadingPath:
     def array(self, name):
         return np.array([getattr(s, name) for s in self.states])
 
+    @property
+    def quality(self) -> Quality:
+        """Worst element quality over the loading states."""
+        return worst(*(s.quality for s in self.states))
+
+    @property
+    def inversion(self):
+        """The first state whose contact centre has left the plane, or None."""
+        return next((s for s in self.states if s.centre_off), None)
+
 
 @dataclass(frozen=True, eq=False)
 class RelaxationPath:
@@ -87,9 +110,15 @@ class RelaxationPath:
     penetration: bool         # a node outside the held zone touched the plane
     centre_lifts: bool        # the plane had to pull the centre down while pushing elsewhere
     timer: Timer
+    inversion_delta: float = np.nan   # first delta at which centre_lifts became true
 
     def array(self, name):
         return np.array([getattr(s, name) for s in self.states])
+
+    @property
+    def quality(self) -> Quality:
+        """Worst element quality over the path (its start included)."""
+        return worst(*(s.quality for s in self.states))
 
 
 class _Problem:
@@ -117,7 +146,10 @@ class _Problem:
         try:
             lu = spla.splu(Kff, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0)
         except RuntimeError:
-            lu = spla.splu(Kff, permc_spec="COLAMD")
+            try:
+                lu = spla.splu(Kff, permc_spec="COLAMD")
+            except RuntimeError as err:
+                raise ConvergenceError(f"singular tangent ({err})") from None
         e = np.zeros(self.d.ndof)
         e[c.rimz] = 1.0
         dr_ddelta = -(K @ e)[c.free]
@@ -155,6 +187,8 @@ class _Problem:
         Returns (x, delta, K, r, history).  Raises ConvergenceError.
         """
         d = self.d
+        if not (math.isfinite(delta) and np.all(np.isfinite(x))):
+            raise ConvergenceError(f"non-finite start of Newton (delta = {delta!r})")
         x = x.copy()
         x[c.rimz] = -delta
         if target is not None:
@@ -205,11 +239,22 @@ class _Problem:
         dP = -float(np.sum(K[c.rimz] @ dx))
         return dx, dP
 
-    def state(self, x, delta, r, held, joined, history, dP=np.nan):
+    def state(self, x, delta, r, held, joined, history, dP=np.nan, centre_off=False,
+              check_J=True):
+        """The converged state; raises QualityError if its elements fail the quality
+        check (`check_J`: the pointwise J range counts too)."""
         d = self.d
+        q = quality(d, x)
+        problem = q.problem(check_J)
+        if problem:
+            cm = d.capmesh
+            raise QualityError(
+                f"element quality: {problem} at delta = {delta:.4g} R on the {cm.spec.name} "
+                f"mesh of t/R = {cm.cap.t:g}, h/R = {cm.cap.h:g}; try a finer mesh or a "
+                f"smaller delta_max")
         a = float(deformed_radius(d, x, max(held))) if len(held) else 0.0
         return State(delta, rim_load(d, r), strain_energy(d, x), a, tuple(held), joined,
-                     x.copy(), dP, history)
+                     x.copy(), dP, history, quality=q, centre_off=centre_off)
 
 
 def load(d: Discretisation, interface: str, delta_max: float,
@@ -218,9 +263,12 @@ def load(d: Discretisation, interface: str, delta_max: float,
 
     `progress(delta)` is called after each converged state if given.
     """
+    if not (math.isfinite(delta_max) and delta_max > 0):
+        raise ValueError(f"delta_max: {delta_max!r} must be a finite number > 0 (units of R)")
     timer = Timer()
     pb = _Problem(d, interface, settings, timer)
     n_outer = len(d.capmesh.outer)
+    max_events = settings.max_events_per_node * n_outer
     held = [0]
     x = np.zeros(d.ndof)
     delta = 0.0
@@ -229,7 +277,13 @@ def load(d: Discretisation, interface: str, delta_max: float,
     states = [pb.state(x, delta, r, held, 0, ())]
     step_cap = settings.step_max
     reuse = None
+    events = 0
     while delta < delta_max * (1 - 1e-12):
+        if len(states) >= settings.max_states or events >= max_events:
+            raise ConvergenceError(
+                f"loading stopped at delta = {delta:.6g} R: {len(states)} states and {events} "
+                f"contact events without reaching delta_max = {delta_max:.6g} R (limits "
+                f"{settings.max_states} states, {max_events} events)")
         dx, dP = pb.tangent_direction(K, c, reuse)
         states[-1] = _with_stiffness(states[-1], dP)
         free_nodes = np.setdiff1d(np.arange(n_outer), held)
@@ -242,27 +296,15 @@ def load(d: Discretisation, interface: str, delta_max: float,
         target = int(free_nodes[k]) if to_touch[k] <= step else None
         step = to_touch[k] if target is not None else step
         try:
-            for _ in range(20):
-                xn, dn, Kn, rn, hist = pb.newton(c, x + dx * step, delta + step, target)
-                if target is not None and dn > delta_max:
-                    # the event lies beyond the end of the path: stop at delta_max instead
-                    target, step = None, delta_max - delta
-                    xn, dn, Kn, rn, hist = pb.newton(c, x + dx * step, delta_max)
-                gn = gaps(d, xn, free_nodes)
-                gn[free_nodes == target] = 0.0
-                if gn.min() >= -settings.gap_tol:
-                    break
-                # another node touched first: locate that event instead
-                target = int(free_nodes[np.argmin(gn)])
-                step = to_touch[np.argmin(gn)] if np.isfinite(to_touch[np.argmin(gn)]) else step / 2
-            else:
-                raise ConvergenceError("contact front could not be resolved")
-        except ConvergenceError:
-            step_cap = step / 2
+            xn, dn, Kn, rn, hist, target = _advance(pb, c, x, delta, dx, free_nodes, target,
+                                                    step, delta_max)
+        except ConvergenceError as err:
+            # the cap never grows on failure, so repeated failures end at step_min
+            step_cap = min(step_cap, step) / 2
             if step_cap < settings.step_min:
                 raise ConvergenceError(
                     f"loading stalled at delta = {delta:.6g} R: Newton fails even for a step "
-                    f"of {settings.step_min:g} R") from None
+                    f"of {settings.step_min:g} R ({err})") from None
             continue
         step_cap = min(settings.step_max, 2 * step_cap)
         x, delta, K, r = xn, dn, Kn, rn
@@ -270,22 +312,61 @@ def load(d: Discretisation, interface: str, delta_max: float,
         _, dP_left = pb.tangent_direction(K, c, pb.last_lu)
         joined = -1
         if target is not None:
+            events += 1
             held = held + [target]
             x[d.uz(d.capmesh.outer[target])] = -pb.Z[target]
             joined = target
             c = constraints(d, interface, held)
+        released = []
         if interface == "frictionless":
-            n_held = len(held)
+            before = held
             x, K, r, held, c, hist = _release_tensile(pb, x, delta, K, r, held, c, hist)
-            if len(held) != n_held:
+            released = sorted(set(before) - set(held))
+            if released:
                 reuse = None
-        states.append(replace(pb.state(x, delta, r, held, joined, hist),
+        # the centre left the plane: a held node inside the zone let go, or the plane
+        # pulls the centre while pushing elsewhere (no_slip holds it down)
+        off = (bool(released) and released[0] < max(held)) or centre_pulled(d, r, held)
+        states.append(replace(pb.state(x, delta, r, held, joined, hist, centre_off=off),
                               dP_ddelta_left=dP_left))
         if progress is not None:
             progress(delta)
     dx, dP = pb.tangent_direction(K, c)
     states[-1] = _with_stiffness(states[-1], dP)
     return LoadingPath(interface, tuple(states), timer)
+
+
+def _advance(pb, c, x, delta, dx, free_nodes, target, step, delta_max):
+    """One loading step from the converged (x, delta): to delta + step, or to the event of
+    `target` predicted near there.  Returns (x, delta, K, r, history, target).
+
+    If another free node ends up below the plane, its event lies inside the step just
+    taken: it is re-located from a secant guess between the two converged states, never
+    from the tangent prediction (which can lie far beyond the step that failed).  Each
+    re-location therefore shrinks the step, so the search ends.
+    """
+    d, s = pb.d, pb.s
+    g0 = gaps(d, x, free_nodes)
+    guess = x + dx * step
+    for _ in range(s.max_relocations):
+        xn, dn, Kn, rn, hist = pb.newton(c, guess, delta + step, target)
+        if target is not None and dn > delta_max:
+            # the event lies beyond the end of the path: stop at delta_max instead
+            target, step = None, delta_max - delta
+            xn, dn, Kn, rn, hist = pb.newton(c, x + dx * step, delta_max)
+        if dn < delta * (1 - 1e-12):
+            raise ConvergenceError(f"the event of outer node {target} was located behind the "
+                                   f"last state (delta = {dn:.6g} < {delta:.6g} R)")
+        gn = gaps(d, xn, free_nodes)
+        gn[free_nodes == target] = 0.0
+        j = int(np.argmin(gn))
+        if gn[j] >= -s.gap_tol:
+            return xn, dn, Kn, rn, hist, target
+        frac = float(np.clip(g0[j] / (g0[j] - gn[j]), 0.0, 1.0))
+        target, step = int(free_nodes[j]), (dn - delta) * frac
+        guess = x + (xn - x) * frac
+    raise ConvergenceError(f"contact front not resolved after {s.max_relocations} "
+                           f"re-located events from delta = {delta:.6g} R")
 
 
 def _with_stiffness(s: State, dP):
@@ -317,8 +398,12 @@ def relax(d: Discretisation, interface: str, start: State, stop, step: float,
           settings: Settings = Settings()) -> RelaxationPath:
     """Lower delta from `start` with its held nodes kept, in steps of about `step`.
 
-    `stop(state)` ends the path when it returns True (the state is kept).
+    `stop(state)` ends the path when it returns True (the state is kept).  The path also
+    ends, with the reason in `ended_by`, when Newton fails below step / 1000 or after
+    `settings.max_points` states.
     """
+    if not (math.isfinite(step) and step > 0):
+        raise ValueError(f"relaxation step: {step!r} must be a finite number > 0 (units of R)")
     timer = Timer()
     pb = _Problem(d, interface, settings, timer)
     held = list(start.held)
@@ -330,8 +415,9 @@ def relax(d: Discretisation, interface: str, start: State, stop, step: float,
     outside = np.setdiff1d(np.arange(len(d.capmesh.outer)), held)
     h = step
     penetration = centre_lifts = False
-    ended_by = "stop criterion"
-    while True:
+    inversion_delta = np.nan
+    ended_by = f"point limit: {settings.max_points} states"
+    while len(states) < settings.max_points:
         try:
             xn, dn, Kn, rn, hist = pb.newton(c, x - dx * h, delta - h)
         except ConvergenceError:
@@ -342,17 +428,20 @@ def relax(d: Discretisation, interface: str, start: State, stop, step: float,
             continue
         x, delta, K, r = xn, dn, Kn, rn
         dx, dP = pb.tangent_direction(K, c, pb.last_lu)
-        s = pb.state(x, delta, r, held, -1, hist, dP)
+        pulled = centre_pulled(d, r, held)
+        # the held zone's edge is a crack tip: pointwise J there is not a quality measure
+        s = pb.state(x, delta, r, held, -1, hist, dP, centre_off=pulled, check_J=False)
         states.append(s)
         if len(outside) and gaps(d, x, outside).min() < -settings.gap_tol:
             penetration = True
-        if centre_pulled(d, r, held):
-            centre_lifts = True
+        if pulled and not centre_lifts:
+            centre_lifts, inversion_delta = True, delta
         if stop(s):
+            ended_by = "stop criterion"
             break
         h = min(step, 2 * h)
     return RelaxationPath(interface, start, tuple(states), ended_by, penetration,
-                          centre_lifts, timer)
+                          centre_lifts, timer, inversion_delta)
 
 
 def edge_forces(d: Discretisation, r_int, held):

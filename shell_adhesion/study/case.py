@@ -2,7 +2,7 @@
 
 Dimensional input (R, t, h and delta_max in mm, C10 and the other coefficients of the
 material in MPa, D1 in 1/MPa, gamma in J/m^2) is checked by the solver's rules
-(`solver.scaling`, `solver.geometry`, `solver.material`, `solver.case.check_gamma`) before
+(`solver.scaling`, `solver.geometry`, `solver.material`, `solver.geometry.check_gamma`) before
 any computation; the FE paths are solved once (`solver.case.solve_paths`) and serve every
 gamma.  The result renders as JSON (what `shell-adhesion case --json` prints) or as an
 xarray Dataset (`study.case_report`).  P > 0 compression, delta > 0 approach.
@@ -14,7 +14,8 @@ import sys
 import time
 
 from shell_adhesion.solver import __version__
-from shell_adhesion.solver.case import GAMMA_MAX, PathSet, check_gamma, solve_paths
+from shell_adhesion.solver.case import PathSet, solve_paths
+from shell_adhesion.solver.geometry import GAMMA_MAX, check_gamma
 from shell_adhesion.solver.contact import INTERFACES
 from shell_adhesion.solver.geometry import InputError, check_cap, check_delta_max
 from shell_adhesion.solver.material import MODELS, NEO_HOOKE, Material
@@ -192,7 +193,7 @@ def solve_case(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2=(), *, delta_max_mm=None,
         ``solver.case.GAMMA_MAX``.  One set of FE paths serves them all.  Without any,
         only the loading curve is computed.
     delta_max_mm : float, optional
-        Deepest rim approach delta [mm], 0 < delta_max < h and at most R/2; default R/4.
+        Deepest rim approach delta [mm], 0 < delta_max < h and at most R/4 (the supported domain); default R/4.
     interface : {"no_slip", "frictionless"}
         Interface model (default no_slip, the paper's cohesive contact).
     mesh : {"coarse", "default", "fine"}

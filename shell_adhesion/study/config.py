@@ -23,7 +23,7 @@
 
 The rules are the solver's, each in one place: R_mm and C10_MPa `solver.scaling.check_R`
 / `check_C10`, every requested shell `solver.geometry.check_cap` and `check_delta_max`,
-every requested gamma / (C10 R) `solver.case.check_gamma`; this module adds the file's
+every requested gamma / (C10 R) `solver.geometry.check_gamma`; this module adds the file's
 own rules (keys, types, repeats) and names each place as it stands in the file, e.g.
 ``sweeps.t_over_R[3]: 1.2 must satisfy 0 < t <= R``.
 
@@ -41,7 +41,7 @@ import re
 
 import yaml
 
-from shell_adhesion.solver.case import GAMMA_MAX, check_gamma
+from shell_adhesion.solver.geometry import GAMMA_MAX, check_gamma
 from shell_adhesion.solver.contact import INTERFACES
 from shell_adhesion.solver.geometry import InputError, check_cap, check_delta_max
 from shell_adhesion.solver.scaling import check_C10, check_finite, check_R, gamma_hat

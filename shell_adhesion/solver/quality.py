@@ -1,0 +1,77 @@
+"""Element quality of a converged state: inverted or distorted elements, and the pointwise
+volume ratio J of the incompressible material.
+
+All measures are taken at the quadrature points of the displacement basis and are
+dimensionless.  J = det F is the local volume ratio (hoop stretch included); the
+mixed formulation enforces J = 1 only in the weak (Q1) sense, so the pointwise range of J
+is the discretisation's own error indicator.  `detF_min` is the smallest determinant of
+the in-plane (meridian) part of F: at or below zero an element is folded.  `distortion_min`
+is, per element, the smallest over the largest in-plane det F among its quadrature points
+(1 for an element deformed evenly, near 0 for one about to fold).
+"""
+from dataclasses import dataclass
+
+import numpy as np
+
+from .forms import Discretisation, deformation
+
+# the refusal thresholds (DESIGN.md section 8): beyond them a result is not given
+J_RANGE = (0.75, 4 / 3)    # pointwise J of an incompressible material (healthy states: +-12 %)
+DISTORTION_MIN = 0.05      # smallest deformed-area ratio within one element
+
+
+@dataclass(frozen=True)
+class Quality:
+    """Worst quality measures of a state (or of several states, see `worst`)."""
+
+    J_min: float = 1.0
+    J_max: float = 1.0
+    detF_min: float = 1.0
+    distortion_min: float = 1.0
+    element: int = -1          # element of the worst measure
+
+    def as_dict(self) -> dict:
+        return dict(J_min=self.J_min, J_max=self.J_max, detF_min=self.detF_min,
+                    distortion_min=self.distortion_min)
+
+    def problem(self, check_J: bool = True) -> str:
+        """Why the state must be refused, or '' if it passes the thresholds (`check_J`:
+        the pointwise J range counts)."""
+        if not all(np.isfinite([self.J_min, self.J_max, self.detF_min, self.distortion_min])):
+            return "non-finite deformation"
+        if self.detF_min <= 0:
+            return f"element {self.element} is inverted (det F = {self.detF_min:.3g})"
+        if self.distortion_min < DISTORTION_MIN:
+            return (f"element {self.element} is distorted (det F ratio {self.distortion_min:.3g}"
+                    f" < {DISTORTION_MIN:g})")
+        lo, hi = J_RANGE
+        if check_J and not (lo <= self.J_min and self.J_max <= hi):
+            return (f"pointwise J spans [{self.J_min:.3g}, {self.J_max:.3g}], outside "
+                    f"[{lo:g}, {hi:g}] for an incompressible material")
+        return ""
+
+
+def quality(d: Discretisation, x) -> Quality:
+    """Quality measures of the state x (see the module docstring)."""
+    f, _ = deformation(d, x)
+    det2 = f[0] * f[3] - f[1] * f[2]               # (E, Q) in-plane det F
+    J = det2 * f[4]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = det2.min(axis=1) / det2.max(axis=1)
+    ratio = np.where(det2.max(axis=1) > 0, ratio, -np.inf)
+    e_det, e_ratio = int(np.argmin(det2.min(axis=1))), int(np.argmin(ratio))
+    e_J = int(np.argmax(np.abs(np.log(np.abs(J) + 1e-300)).max(axis=1)))
+    q = Quality(float(J.min()), float(J.max()), float(det2.min()), float(ratio.min()))
+    element = e_det if q.detF_min <= 0 else e_ratio if q.distortion_min < DISTORTION_MIN else e_J
+    return Quality(q.J_min, q.J_max, q.detF_min, q.distortion_min, element)
+
+
+def worst(*qs: Quality) -> Quality:
+    """The worst of each measure over several states."""
+    qs = [q for q in qs if q is not None]
+    if not qs:
+        return Quality()
+    key = min(qs, key=lambda q: (q.detF_min > 0, q.distortion_min >= DISTORTION_MIN,
+                                 -max(-np.log(max(q.J_min, 1e-300)), np.log(max(q.J_max, 1e-300)))))
+    return Quality(min(q.J_min for q in qs), max(q.J_max for q in qs),
+                   min(q.detF_min for q in qs), min(q.distortion_min for q in qs), key.element)

@@ -271,6 +271,24 @@ def _solve(inp: CaseInput, progress: bool) -> CaseResult:
                          "energy_method": round(t3 - t2, 3)},
         "tolerances": {"newton_rtol": settings.tol, "newton_atol": settings.atol,
                        "gap_tol_over_R": settings.gap_tol},
-        "relaxation_gamma_max_over_C10R": gamma_max}
+        "relaxation_gamma_max_over_C10R": gamma_max,
+        **checks_dict(ps.stats, R, C10)}
     return CaseResult(inp, ps, adhesion, provenance)
+
+
+def checks_dict(stats: dict, R_mm: float, C10_MPa: float) -> dict:
+    """What the solver checked, with units: the worst element quality (pointwise J and
+    in-plane det F, dimensionless), where the contact zone inverted (mm; None: never) and
+    the largest gamma every pair of relaxation paths reached (J/m^2; None: no pair)."""
+    quality = {k: stats.get(k) for k in ("J_min", "J_max", "detF_min", "distortion_min",
+                                         "relaxation_J_min", "relaxation_J_max",
+                                         "relaxation_detF_min") if k in stats}
+    mm = lambda v: None if v is None else round(v * R_mm, 10)
+    G = stats.get("G_max_reached")
+    return {"element_quality": quality,
+            "inversion": {"stage": stats.get("inversion_stage"),
+                          "inversion_delta_mm": mm(stats.get("inversion_delta")),
+                          "inversion_a_mm": mm(stats.get("inversion_a")),
+                          "inverted_relaxation_paths": stats.get("inverted_paths", 0)},
+            "G_max_reached_J_m2": None if G is None else round(G * C10_MPa * R_mm * 1e3, 10)}
 

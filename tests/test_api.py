@@ -43,7 +43,7 @@ def test_exports():
     (dict(gamma_J_m2=[30, 900]), "gamma_J_m2: 900 J/m^2 with C10 = 0.3 MPa and R = 20 mm "
                                  "gives gamma/(C10 R) = 0.15, which must be <= 0.03"),
     (dict(gamma_J_m2="30"), "gamma_J_m2: '30' must be a number"),
-    (dict(delta_max_mm=25), "delta_max_mm (delta_max/R = 25/20): 1.25 must be <= 0.5"),
+    (dict(delta_max_mm=25), "delta_max_mm (delta_max/R = 25/20): 1.25 is outside the supported domain delta/R <= 0.25"),
     (dict(mesh="ultra"), "mesh: 'ultra' must be one of coarse, default, fine"),
 ])
 def test_bad_input_raises_before_any_computation(monkeypatch, change, message):

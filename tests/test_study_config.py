@@ -70,11 +70,11 @@ BAD = [
     ("gamma beyond the paths", GOOD + "grid:\n  gamma_J_m2: [30, 1000]\n",
      "grid.gamma_J_m2[1]: 1000 J/m^2 with C10 = 0.3 MPa (base.C10_MPa)"),
     ("delta_max too large", GOOD.replace("delta_max_over_R: 0.1", "delta_max_over_R: 0.6"),
-     "delta_max_over_R: 0.6 must be <= 0.5"),
+     "delta_max_over_R: 0.6 is outside the supported domain delta/R <= 0.25"),
     ("delta_max beyond a shallow cap",
-     GOOD.replace("delta_max_over_R: 0.1", "delta_max_over_R: 0.3")
-     + "grid:\n  h_over_R: [0.25]\n  t_over_R: [0.15]\n",
-     "delta_max_over_R: 0.3 must be < h/R (0.25, grid.h_over_R[0])"),
+     GOOD.replace("delta_max_over_R: 0.1", "delta_max_over_R: 0.22")
+     + "grid:\n  h_over_R: [0.2]\n  t_over_R: [0.15]\n",
+     "delta_max_over_R: 0.22 must be < h/R (0.2, grid.h_over_R[0])"),
     ("outputs flag", GOOD + "outputs:\n  loading_curves: 3\n",
      "outputs.loading_curves: 3 must be true or false"),
     ("duplicate key", GOOD + "R_mm: 25\n", "duplicate key 'R_mm'"),

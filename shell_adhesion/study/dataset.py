@@ -141,10 +141,13 @@ def _build_swept(plan: Plan, served: dict, failed: dict, history: str) -> xr.Dat
                             {k[:2]: v for k, v in served.items() if k[2] == m},
                             {k[:2]: v for k, v in failed.items() if k[2] == m}, history, m))
     ds = xr.concat(cubes, dim="_material", join="outer", data_vars="all",
-                   coords="different", combine_attrs="override")
+                   coords="different", compat="equals", combine_attrs="override")
     ds = ds.assign_coords({n: ("_material", np.array([v[j] for v in combos], dtype=float))
                            for j, n in enumerate(names)})
-    ds = ds.set_index(_material=list(names)).unstack("_material")
+    if len(names) == 1:
+        ds = ds.swap_dims({"_material": names[0]})
+    else:
+        ds = ds.set_index(_material=list(names)).unstack("_material")
     status = ds["status"]
     ds["status"] = status.where(status.notnull(), "not requested").astype(object)
     ds["status"].attrs = status.attrs

@@ -1,34 +1,46 @@
-r"""Mooney-Rivlin shells: pull-off against C01/C10 for the base shell.
+r"""Mooney-Rivlin shells: pull-off against C01/C10 for the base shell, from a study cube.
 
-R = 20 mm, t = 3 mm, h = 20 mm, C10 = 0.3 MPa, gamma = 30 J/m^2, no-slip; C01/C10 from 0
-(neo-Hookean) to 0.5.  Each ratio is one FE problem (the ratio is an FE dimension; C10 only
-rescales).  Writes docs/figures/mooney_rivlin.png: |P*| (fixed load) and delta_dagger (fixed
-grips) against C01/C10, and P* over the eq. 3 scale (mu0 = 2 (C10 + C01)) as eta.
+Runs examples/study_mooney_rivlin.yaml with `shell_adhesion.run_study` (R = 20 mm, t = 3 mm,
+h = 20 mm, C10 = 0.3 MPa, gamma = 30 J/m^2, no-slip; C01/C10 from 0, neo-Hookean, to 0.5;
+coarse mesh, delta_max = 0.15 R).  Each ratio is one FE path set (the ratio is an FE
+dimension, C10 only rescales), stored in the catalogue, so a rerun solves nothing.  Reads
+the cube along its C01_over_C10 dimension and writes docs/figures/mooney_rivlin.png: P* and
+P_dagger, delta_dagger and delta* against C01/C10.
 
     python examples/ex03_mooney_rivlin.py [--mesh coarse] [--delta-max-over-R 0.15]
 """
 import argparse
 from pathlib import Path
+import tempfile
 
 import numpy as np
+import yaml
 
-from shell_adhesion.study.case import solve_case
+from shell_adhesion import run_study
 
-R_MM, T_MM, H_MM, C10_MPA, GAMMA = 20.0, 3.0, 20.0, 0.3, 30.0
-RATIOS = (0.0, 0.1, 0.2, 0.3, 0.4, 0.5)
+STUDY = Path(__file__).parent / "study_mooney_rivlin.yaml"
 FIGURE = Path(__file__).parent.parent / "docs" / "figures" / "mooney_rivlin.png"
 
 
-def sweep(ratios=RATIOS, mesh="coarse", delta_max_over_R=0.15):
-    """Rows (C01/C10, P* [N], delta* [mm], delta_dagger [mm], P_dagger [N], eta)."""
-    rows = []
-    for q in ratios:
-        res = solve_case(R_MM, T_MM, H_MM, C10_MPA, GAMMA, delta_max_mm=delta_max_over_R * R_MM,
-                         mesh=mesh, material="mooney-rivlin", C01_MPa=q * C10_MPA,
-                         progress=False)
-        po = res.to_dict()["pull_off"][0]
-        rows.append((q, po["fixed_load"]["P_N"], po["fixed_load"]["delta_mm"],
-                     po["fixed_grips"]["delta_mm"], po["fixed_grips"]["P_N"], po["eta"]))
+def sweep(ratios=None, mesh=None, delta_max_over_R=None, out=None, catalogue=None):
+    """Rows (C01/C10, P* [N], delta* [mm], delta_dagger [mm], P_dagger [N], eta) of the
+    study's cube (its ratios, mesh and delta_max unless given)."""
+    doc = yaml.safe_load(STUDY.read_text())
+    if ratios is not None:
+        doc["sweeps"] = {"C01_over_C10": [float(q) for q in ratios]}
+    if mesh is not None:
+        doc["mesh"] = mesh
+    if delta_max_over_R is not None:
+        doc["delta_max_over_R"] = delta_max_over_R
+    with tempfile.TemporaryDirectory() as tmp:
+        ds = run_study(doc, out=out or tmp, catalogue=catalogue, progress=False)
+        base = {dim: doc["base"][name] for dim, name in
+                (("C10", "C10_MPa"), ("t_over_R", "t_over_R"), ("h_over_R", "h_over_R"),
+                 ("gamma", "gamma_J_m2"))}
+        point = ds.sel(base)
+        rows = [(q, *(float(point[k].sel(C01_over_C10=q)) for k in
+                      ("P_star", "delta_star", "delta_dagger", "P_dagger", "eta")))
+                for q in ds.C01_over_C10.values]
     return np.array(rows, dtype=float)
 
 
@@ -59,7 +71,7 @@ if __name__ == "__main__":
     ap.add_argument("--mesh", default="coarse")
     ap.add_argument("--delta-max-over-R", type=float, default=0.15)
     ns = ap.parse_args()
-    rows = sweep(mesh=ns.mesh, delta_max_over_R=ns.delta_max_over_R)
+    rows = sweep(mesh=ns.mesh, delta_max_over_R=ns.delta_max_over_R, out="results")
     print("C01/C10   P* [N]  delta* [mm]  delta_dagger [mm]  P_dagger [N]   eta")
     for q, P, d, dd, Pd, eta in rows:
         print(f"{q:7.2f} {P:8.4f} {d:12.4f} {dd:18.4f} {Pd:13.4f} {eta:6.2f}")

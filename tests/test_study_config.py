@@ -86,6 +86,24 @@ BAD = [
     ("base not a mapping", GOOD.replace(
         "base: {C10_MPa: 0.3, t_over_R: 0.15, h_over_R: 1.0, gamma_J_m2: 30}", "base: 3"),
      "base: 3 must be a mapping"),
+    ("material without a model", GOOD + "material: {C01_over_C10: 0.2}\n",
+     "material.model: missing"),
+    ("unknown material model", GOOD + "material: {model: ogden}\n",
+     "material.model: 'ogden' must be one of neo_hooke, mooney_rivlin, yeoh, gent"),
+    ("unknown material key", GOOD + "material: {model: mooney_rivlin, C01_MPa: 0.05}\n",
+     "material.C01_MPa: unknown key"),
+    ("ratio not of the model", GOOD + "material: {model: yeoh, C01_over_C10: 0.2}\n",
+     "material: C01_over_C10: 0.2 is not a coefficient of the yeoh model"),
+    ("gent without Jm", GOOD + "material: {model: gent}\n",
+     "material: Jm: the gent model needs Jm"),
+    ("negative D1 C10", GOOD + "material: {model: neo_hooke, D1_times_C10: -0.1}\n",
+     "material: D1: -0.1 (times C10) must be >= 0"),
+    ("unstable swept ratio", GOOD + "material: {model: yeoh}\n"
+     "grid:\n  C20_over_C10: [0, -0.3]\n",
+     "grid.C20_over_C10[1]: material: yeoh (C20/C10 = -0.3, C30/C10 = 0) is unstable (Drucker): the uniaxial tangent stiffness d sigma / d stretch is <= 0 at stretch 1.53"),
+    ("swept ratio of neo-Hooke", GOOD.replace("  t_over_R: [0.15, 0.2]\n",
+                                              "  C01_over_C10: [0, 0.2]\n"),
+     "sweeps.C01_over_C10[1]: C01_over_C10: 0.2 is not a coefficient of the neo_hooke model"),
 ]
 
 

@@ -79,3 +79,29 @@ def test_material_ratios_are_fe_dimensions_c10_is_not():
     nh = make_plan(s, material=NEO_HOOKE).shells[0]
     assert "material" not in nh.key and nh.key == make_plan(s).shells[0].key
     assert nh.key == pathset_key(0.15, 1.0, "no_slip", "coarse", 0.1, nh.gamma_max_hat)
+
+
+def test_swept_ratio_plans_one_path_set_per_value():
+    """sweeps: {C01_over_C10: [...]} plans one set per ratio (C01/C10 = 0 is the neo-Hookean
+    set), each key with its material; a C10 sweep beside it adds no set."""
+    from shell_adhesion.solver.material import NEO_HOOKE, Material
+
+    s = study(base=BASE, material=dict(model="mooney_rivlin", C01_over_C10=0.2),
+              sweeps=dict(C01_over_C10=[0, 0.1, 0.2, 0.3, 0.4, 0.5], C10_MPa=[0.2, 0.3]))
+    plan = make_plan(s)
+    assert plan.ratio_axes == {"C01_over_C10": (0.0, 0.1, 0.2, 0.3, 0.4, 0.5)}
+    assert len(plan.shells) == 6 and len({sh.fingerprint for sh in plan.shells}) == 6
+    assert [sh.material for sh in plan.shells] == [NEO_HOOKE] + [
+        Material("mooney_rivlin", C01_over_C10=c) for c in (0.1, 0.2, 0.3, 0.4, 0.5)]
+    assert "material" not in plan.shells[0].key
+    assert plan.shells[0].key == make_plan(study(base=BASE)).shells[0].key
+    assert plan.shells[2].key["material"]["C01_over_C10"] == 0.2
+    # base (C01/C10 0.2) with C10 0.2 and 0.3, and the five other ratios at C10 0.3
+    assert len(plan.points) == 7
+    sub = plan.for_ratios((0.2,))
+    assert sub.points == ((0.2, 0.15, 1.0, 30.0), (0.3, 0.15, 1.0, 30.0))
+    assert sub.shells == (plan.shells[2],)
+    # a fixed material (no sweep): one set, keyed by its ratios
+    fixed = make_plan(study(base=BASE, material=dict(model="mooney_rivlin", C01_over_C10=0.2)))
+    assert fixed.ratio_axes is None and len(fixed.shells) == 1
+    assert fixed.shells[0].key["material"] == plan.shells[2].key["material"]

@@ -116,12 +116,13 @@ def ok_cases(ds: xr.Dataset, where=None) -> xr.Dataset:
     """The points with status "ok" (and `where`, a boolean DataArray over the cube's
     dimensions, if given) as one Dataset along ``case``, labelled by C10, t_over_R,
     h_over_R, gamma, t_mm and h_mm; only variables on exactly the cube's dimensions."""
-    names = [v for v in ds.data_vars if set(ds[v].dims) == set(DIMS)]
+    dims = ds["status"].dims        # DIMS, and any swept material ratio (C01_over_C10, ...)
+    names = [v for v in ds.data_vars if set(ds[v].dims) == set(dims)]
     mask = ds["status"] == "ok"
     if where is not None:
         mask = mask & where
-    flat = ds[names].stack(case=DIMS)
-    keep = np.flatnonzero(mask.broadcast_like(ds["status"]).stack(case=DIMS).values)
+    flat = ds[names].stack(case=dims)
+    keep = np.flatnonzero(mask.broadcast_like(ds["status"]).stack(case=dims).values)
     return flat.isel(case=keep).reset_index("case")
 
 

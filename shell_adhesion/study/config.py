@@ -12,6 +12,10 @@
       C10_MPa: [0.1, 0.2, 0.3]
     grid:                       # full Cartesian product (factors not listed come from base)
       gamma_J_m2: [10, 20]
+    material:                   # the solid (default: incompressible neo-Hookean)
+      model: mooney_rivlin      #   neo_hooke, mooney_rivlin, yeoh or gent (ABAQUS's forms)
+      C01_over_C10: 0.2         #   ratios to C10: C01_over_C10, C20_over_C10, C30_over_C10,
+                                #   Jm, D1_times_C10 (= D1 [1/MPa] x C10 [MPa]; 0 incompressible)
     interface: no_slip          # or frictionless (default no_slip)
     mesh: default               # coarse, default or fine (default default)
     delta_max_over_R: 0.25      # deepest loading, delta / R (default 0.25)
@@ -20,6 +24,15 @@
       loading_curves: true      # the loading curve of each shell (default true)
       relaxation_curves: true   # P, delta of every relaxation path (default true)
       deformed_states: true     # profiles and von Mises maps for figures (default true)
+
+The material's coefficients are given as ratios to C10 (the solver's `Material`): C10 stays
+the scaling modulus, so a C10 sweep at fixed ratios is post-processing of one set of FE
+paths per shell, while each value of a ratio is its own set.  D1 is given as D1_times_C10
+for the same reason (a fixed D1 in 1/MPa would change D1 C10 with every C10).  A ratio may
+also be a factor of `sweeps` or `grid` (``sweeps: {C01_over_C10: [0, 0.1, 0.2]}``); a swept
+ratio becomes a dimension of the cube.  Every requested solid is checked by the solver
+(coefficients of the model, Jm > 0, D1 >= 0, Drucker stability), its message prefixed with
+the place, e.g. ``sweeps.C20_over_C10[1]: material: yeoh (...) is unstable ...``.
 
 The rules are the solver's, each in one place: R_mm and C10_MPa `solver.scaling.check_R`
 / `check_C10`, every requested shell `solver.geometry.check_cap` and `check_delta_max`,
@@ -44,11 +57,13 @@ import yaml
 from shell_adhesion.solver.geometry import GAMMA_MAX, check_gamma
 from shell_adhesion.solver.contact import INTERFACES
 from shell_adhesion.solver.geometry import InputError, check_cap, check_delta_max
+from shell_adhesion.solver.material import MODELS, NEO_HOOKE, Material
 from shell_adhesion.solver.scaling import check_C10, check_finite, check_R, gamma_hat
 
 FACTORS = ("C10_MPa", "t_over_R", "h_over_R", "gamma_J_m2")
+RATIOS = ("C01_over_C10", "C20_over_C10", "C30_over_C10", "Jm", "D1_times_C10")
 MESHES = ("coarse", "default", "fine")
-KEYS = ("name", "description", "R_mm", "base", "sweeps", "grid", "interface", "mesh",
+KEYS = ("name", "description", "R_mm", "base", "sweeps", "grid", "material", "interface", "mesh",
         "delta_max_over_R", "outputs")
 OUTPUTS = ("equilibrium_curves", "loading_curves", "relaxation_curves", "deformed_states")
 MAX_BYTES = 1_000_000       # a study file is a few lines; refuse anything over 1 MB
@@ -83,6 +98,16 @@ class Study:
     description: str = ""
     source: str = ""                # the file it came from
     sha256: str = ""                # of the file's bytes
+    material: dict = field(default_factory=dict)   # model and fixed ratios ({}: neo-Hookean)
+
+    @property
+    def model(self) -> str:
+        return self.material.get("model", "neo_hooke")
+
+    @property
+    def swept_ratios(self) -> tuple:
+        """The material ratios the sweeps or the grid vary (cube dimensions), in RATIOS order."""
+        return tuple(r for r in RATIOS if r in self.sweeps or r in self.grid)
 
     def as_dict(self) -> dict:
         """The validated study as plain data (for provenance)."""
@@ -90,7 +115,8 @@ class Study:
                     base=dict(self.base), sweeps={k: list(v) for k, v in self.sweeps.items()},
                     grid={k: list(v) for k, v in self.grid.items()}, interface=self.interface,
                     mesh=self.mesh, delta_max_over_R=self.delta_max_over_R,
-                    outputs=asdict(self.outputs))
+                    outputs=asdict(self.outputs),
+                    **({"material": dict(self.material)} if self.material else {}))
 
 
 # -- reading ---------------------------------------------------------------------------
@@ -214,7 +240,7 @@ def _factor_value(factor, value, place) -> float:
 
 
 def _factor_lists(doc, place) -> dict:
-    _keys(doc, place, FACTORS, "factor")
+    _keys(doc, place, FACTORS + RATIOS, "factor")
     out = {}
     for factor, values in doc.items():
         fplace = _join(place, factor)
@@ -279,6 +305,8 @@ def _validate(doc, source, sha256) -> Study:
         if grid and f not in grid and f not in base:
             raise StudyError(f"grid.{f}: missing (give it in grid or in base)")
 
+    material = _material(doc["material"]) if "material" in doc else {}
+
     interface = _string(doc.get("interface", "no_slip"), "interface")
     if interface not in INTERFACES:
         raise StudyError(f"interface: {interface!r} must be one of {', '.join(INTERFACES)}")
@@ -298,9 +326,41 @@ def _validate(doc, source, sha256) -> Study:
         outputs = Outputs(**flags)
 
     study = Study(name, R_mm, base, sweeps, grid, interface, mesh, delta_max, outputs,
-                  description, source, sha256)
+                  description, source, sha256, material)
     _check_points(study)
     return study
+
+
+def _material(doc) -> dict:
+    """The material block: a model and its fixed ratios (numbers; checked per point)."""
+    _keys(doc, "material", ("model",) + RATIOS)
+    if "model" not in doc:
+        raise StudyError(f"material.model: missing (one of {', '.join(MODELS)})")
+    model = _string(doc["model"], "material.model")
+    if model not in MODELS:
+        raise StudyError(f"material.model: {model!r} must be one of {', '.join(MODELS)}")
+    out = {"model": model}
+    out.update({r: _number(doc[r], f"material.{r}") for r in RATIOS if r in doc})
+    return out
+
+
+def material_of(study: Study, point: dict) -> Material:
+    """The solid of a requested point ({factor: (value, place)}); StudyError naming the
+    place of the swept ratio (or `material`) when the solver refuses it."""
+    ratios = {r: point[r][0] for r in RATIOS if r in point}
+    if not ratios and study.model == "neo_hooke":
+        return NEO_HOOKE
+    try:
+        m = Material(study.model, **ratios)
+    except InputError as e:
+        places = [point[r][1] for r in study.swept_ratios if r in point]
+        where = places[0] if places else "material"
+        raise StudyError(f"{where}: {e}" if not str(e).startswith(where) else str(e)) from None
+    # a solid that is the neo-Hookean one (e.g. C01/C10 = 0) shares its FE paths
+    if m.model in ("mooney_rivlin", "yeoh") and not (
+            m.C01_over_C10 or m.C20_over_C10 or m.C30_over_C10):
+        return Material("neo_hooke", D1_times_C10=m.D1_times_C10)
+    return m
 
 
 def requested(study: Study):
@@ -311,16 +371,18 @@ def requested(study: Study):
     Points may repeat (every sweep passes through base).
     """
     base = {f: (v, f"base.{f}") for f, v in study.base.items()}
+    base.update({r: (v, f"material.{r}") for r, v in study.material.items() if r in RATIOS})
     if study.sweeps or not study.grid:
         yield dict(base)
     for f, values in study.sweeps.items():
         for i, v in enumerate(values):
             yield {**base, f: (v, f"sweeps.{f}[{i}]")}
     if study.grid:
+        names = FACTORS + tuple(r for r in RATIOS if r in study.grid or r in base)
         axes = [[(v, f"grid.{f}[{i}]") for i, v in enumerate(study.grid[f])] if f in study.grid
-                else [base[f]] for f in FACTORS]
+                else [base[f]] for f in names]
         for combo in itertools.product(*axes):
-            yield dict(zip(FACTORS, combo))
+            yield dict(zip(names, combo))
 
 
 def _check_points(study: Study):
@@ -328,7 +390,12 @@ def _check_points(study: Study):
     (C10 R) within what the relaxation paths are built for (the solver's rules)."""
     seen = set()
     R = study.R_mm
+    if study.material and not study.swept_ratios:
+        material_of(study, {r: (v, f"material.{r}") for r, v in study.material.items()
+                            if r in RATIOS})
     for point in requested(study):
+        if study.swept_ratios:
+            material_of(study, point)
         (t, t_place), (h, h_place) = point["t_over_R"], point["h_over_R"]
         (C10, c_place), (gamma, g_place) = point["C10_MPa"], point["gamma_J_m2"]
         check_gamma(gamma_hat(gamma, C10, R), GAMMA_MAX, g_place, f"{gamma:g} J/m^2",

@@ -43,10 +43,11 @@ import xarray as xr
 from shell_adhesion import solver
 from shell_adhesion.catalogue import write_atomic
 from shell_adhesion.solver import case
+from shell_adhesion.solver.material import NEO_HOOKE
 from shell_adhesion.solver.scaling import energy_mJ, force_N, gamma_hat, length_mm
 from shell_adhesion.solver.theory import eta_of
 
-from .config import FACTORS, KEYS, Outputs
+from .config import FACTORS, KEYS, RATIOS, Outputs
 from .keys import solver_source_sha256
 from .plan import LADDER, Plan
 
@@ -78,12 +79,13 @@ def _attrs(units, long_name, **more):
     return dict(units=units, long_name=long_name, **more)
 
 
-def _evaluate(ps, surface, C10, R, t, gamma):
-    """Pull-off values (dimensional) and the equilibrium curve of one point."""
+def _evaluate(ps, surface, C10, R, t, gamma, material=NEO_HOOKE):
+    """Pull-off values (dimensional) and the equilibrium curve of one point (eta with the
+    material's small-strain modulus)."""
     eq, po = ps.pull_off(gamma_hat(gamma, C10, R), surface)
     conv = dict(force=lambda x: force_N(x, C10, R), length=lambda x: length_mm(x, R))
     values = {k: conv[kind](getattr(po, k)) for k, (_, _, kind) in _PULL_OFF.items()}
-    values["eta"] = eta_of(values["P_star"], R, t * R, C10, gamma)
+    values["eta"] = eta_of(values["P_star"], R, t * R, C10, gamma, material)
     curve = dict(a_eq_mm=length_mm(eq.a, R), delta_eq=length_mm(eq.delta, R),
                  P_eq=force_N(eq.P, C10, R),
                  stable_fixed_load=np.asarray(eq.stable_fixed_load, dtype=float),
@@ -94,9 +96,75 @@ def _evaluate(ps, surface, C10, R, t, gamma):
 def build(plan: Plan, served: dict, failed: dict, history: str = "") -> xr.Dataset:
     """The results cube of a planned study.
 
-    served: (t/R, h/R) -> (fingerprint, PathSet) for the shells with FE paths;
-    failed: (t/R, h/R) -> reason for the shells whose FE paths could not be computed.
+    served: (t/R, h/R[, Material]) -> (fingerprint, PathSet) for the shells with FE paths;
+    failed: (t/R, h/R[, Material]) -> reason for the shells whose FE paths could not be
+    computed.  A study sweeping material ratios gets one more dimension per swept ratio
+    (named as in the study file, e.g. C01_over_C10): the cubes of each solid, concatenated
+    (curves NaN-padded to the longest).
     """
+    if plan.ratio_axes:
+        return _build_swept(plan, served, failed, history)
+    material = plan.shells[0].material if plan.shells else NEO_HOOKE
+    served = {k[:2]: v for k, v in served.items() if len(k) == 2 or k[2] == material}
+    failed = {k[:2]: v for k, v in failed.items() if len(k) == 2 or k[2] == material}
+    ds = _build(plan, served, failed, history, material)
+    if material != NEO_HOOKE or plan.study.material:
+        ds.attrs.update(_material_attrs(plan, material))
+    return ds
+
+
+def _material_attrs(plan: Plan, material) -> dict:
+    study = plan.study
+    C10 = study.base.get("C10_MPa")
+    text = material.coefficients(C10) if C10 is not None else material.coefficients()
+    fixed = {f"material_{r}": v for r, v in study.material.items() if r != "model"}
+    return dict(material_model=study.model,
+                material=f"{material.model} ({text})" if not plan.ratio_axes
+                else f"{study.model} (swept: {', '.join(plan.ratio_axes)})",
+                title=f"{study.description or f'shell-adhesion study {study.name}'}; "
+                      f"material {study.model}"
+                      + (f" ({text})" if not plan.ratio_axes else ""),
+                source=_global_attrs(plan, "")["source"].replace(
+                    "incompressible neo-Hookean", f"{study.model} hyperelastic"),
+                **fixed)
+
+
+def _build_swept(plan: Plan, served: dict, failed: dict, history: str) -> xr.Dataset:
+    """Cubes of each swept solid stacked along the solids, then unstacked into one
+    dimension per swept ratio (combinations not requested are NaN / "not requested")."""
+    names = tuple(plan.ratio_axes)
+    combos = sorted(plan.materials)
+    cubes = []
+    for values in combos:
+        m = plan.materials[values]
+        cubes.append(_build(plan.for_ratios(values),
+                            {k[:2]: v for k, v in served.items() if k[2] == m},
+                            {k[:2]: v for k, v in failed.items() if k[2] == m}, history, m))
+    ds = xr.concat(cubes, dim="_material", join="outer", data_vars="all",
+                   coords="different", compat="equals", combine_attrs="override")
+    ds = ds.assign_coords({n: ("_material", np.array([v[j] for v in combos], dtype=float))
+                           for j, n in enumerate(names)})
+    if len(names) == 1:
+        ds = ds.swap_dims({"_material": names[0]})
+    else:
+        ds = ds.set_index(_material=list(names)).unstack("_material")
+    status = ds["status"]
+    ds["status"] = status.where(status.notnull(), "not requested").astype(object)
+    ds["status"].attrs = status.attrs
+    ds["reason"] = ds["reason"].where(ds["reason"].notnull(), "").astype(object)
+    for n in names:
+        ds[n].attrs = _attrs("1", _RATIO_NAMES[n])
+    ds.attrs.update(_material_attrs(plan, plan.materials[combos[0]]))
+    return ds
+
+
+_RATIO_NAMES = {"C01_over_C10": "Mooney-Rivlin ratio C01 / C10",
+                "C20_over_C10": "Yeoh ratio C20 / C10", "C30_over_C10": "Yeoh ratio C30 / C10",
+                "Jm": "Gent limit Jm of I1bar - 3",
+                "D1_times_C10": "compressibility D1 C10 (0: incompressible)"}
+
+
+def _build(plan: Plan, served: dict, failed: dict, history: str, material) -> xr.Dataset:
     study = plan.study
     R = study.R_mm
     ax = plan.axes
@@ -122,7 +190,8 @@ def build(plan: Plan, served: dict, failed: dict, history: str = "") -> xr.Datas
             status[i], reason[i] = "out of range", surface_errors[t, h]
         else:
             try:
-                results[i] = _evaluate(served[t, h][1], surfaces[t, h], C10, R, t, gamma)
+                results[i] = _evaluate(served[t, h][1], surfaces[t, h], C10, R, t, gamma,
+                                       material)
                 status[i] = "ok"
             except ValueError as e:     # solver.energy.OutOfRange and gamma > gamma_max
                 status[i], reason[i] = "out of range", str(e)
@@ -368,10 +437,14 @@ def study_of(ds: xr.Dataset) -> dict:
         if k in out:
             out[k] = float(out[k])
     for group, prefix in _GROUPS.items():
-        values = {f: a[prefix + f] for f in FACTORS if prefix + f in a}
+        values = {f: a[prefix + f] for f in FACTORS + RATIOS if prefix + f in a}
         if values:          # the study file leaves out an empty group
             out[group] = ({f: float(v) for f, v in values.items()} if group == "base" else
                           {f: [float(x) for x in np.atleast_1d(v)] for f, v in values.items()})
+    if "material_model" in a:
+        out["material"] = {"model": str(a["material_model"]),
+                           **{r: float(a["material_" + r]) for r in RATIOS
+                              if "material_" + r in a}}
     out["outputs"] = {f.name: bool(a[_OUTPUTS + f.name]) for f in fields(Outputs)
                       if _OUTPUTS + f.name in a}
     return {k: out[k] for k in KEYS if k in out}

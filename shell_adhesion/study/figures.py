@@ -104,7 +104,8 @@ def _title(ds, p, with_gamma=True):
     R = float(ds["R"])
     s = (f"R = {R:g} mm, t = {p['t_over_R'] * R:g} mm, h = {p['h_over_R'] * R:g} mm, "
          f"C10 = {p['C10']:g} MPa")
-    return s + (f", gamma = {p['gamma']:g} J/m$^2$" if with_gamma else "")
+    s = s + (f", gamma = {p['gamma']:g} J/m$^2$" if with_gamma else "")
+    return s + (f"; {ds.attrs['material']}" if "material" in ds.attrs else "")
 
 
 def _section(ds, j, shell):

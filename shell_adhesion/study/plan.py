@@ -11,7 +11,9 @@ the requested delta_max, so the results do not depend on what else the catalogue
 Another solid (`solver.material.Material`) enters the plan by its ratios to C10 (C01/C10,
 C20/C10, C30/C10, Jm, D1 C10): they are FE dimensions and part of every shell's key, while
 C10 stays the scaling modulus, so a C10 sweep at fixed ratios still needs one set of paths
-per shell.
+per shell.  The study's `material:` block gives that solid; a study that sweeps a ratio
+(`Study.swept_ratios`) plans one set per (t/R, h/R, ratios), and its points carry the swept
+ratios after the four factors.
 """
 from dataclasses import dataclass, replace
 import math
@@ -22,7 +24,7 @@ from shell_adhesion.solver.material import NEO_HOOKE, Material
 from shell_adhesion.solver.path import Settings
 from shell_adhesion.solver.scaling import gamma_hat
 
-from .config import FACTORS, Study, requested
+from .config import FACTORS, Study, material_of, requested
 from .keys import pathset_key
 
 LADDER = (1, 2, 5)
@@ -64,33 +66,59 @@ class Plan:
 
     study: Study
     axes: dict          # factor -> sorted tuple: the union of the study's values (cube axes)
-    points: tuple       # requested (C10_MPa, t_over_R, h_over_R, gamma_J_m2), sorted, distinct
-    shells: tuple       # Shell, sorted by (t/R, h/R)
+    points: tuple       # requested (C10_MPa, t_over_R, h_over_R, gamma_J_m2[, swept ratios])
+    shells: tuple       # Shell, sorted by (t/R, h/R) (then by swept ratios)
     settings: Settings
+    ratio_axes: dict = None     # swept ratio -> sorted tuple of its values (None: none swept)
+    materials: dict = None      # swept ratio values (tuple) -> Material
 
-    def shell(self, t_over_R, h_over_R) -> Shell:
+    def shell(self, t_over_R, h_over_R, material: Material = None) -> Shell:
         for s in self.shells:
-            if (s.t_over_R, s.h_over_R) == (t_over_R, h_over_R):
+            if ((s.t_over_R, s.h_over_R) == (t_over_R, h_over_R)
+                    and (material is None or s.material == material)):
                 return s
         raise KeyError((t_over_R, h_over_R))
 
+    def for_ratios(self, values: tuple) -> "Plan":
+        """The part of a plan with swept ratios at `values` (one value per swept ratio): its
+        points without the ratios, the shells of that solid, the whole plan's axes."""
+        m = self.materials[values]
+        n = len(FACTORS)
+        points = tuple(p[:n] for p in self.points if tuple(p[n:]) == tuple(values))
+        shells = tuple(s for s in self.shells if s.material == m)
+        return replace(self, points=points, shells=shells, ratio_axes=None, materials=None)
+
 
 def make_plan(study: Study, settings: Settings = Settings(),
-              material: Material = NEO_HOOKE) -> Plan:
-    """The distinct path sets of a validated study, with their catalogue keys; `material`
-    (ratios to C10) is the solid of every shell."""
-    points = sorted({tuple(p[f][0] for f in FACTORS) for p in requested(study)})
+              material: Material = None) -> Plan:
+    """The distinct path sets of a validated study, with their catalogue keys; the solid
+    is the study's (`material`, ratios to C10, overrides it when no ratio is swept)."""
+    swept = study.swept_ratios
+    solids = {}             # swept ratio values -> Material
+    points = set()
+    for p in requested(study):
+        values = tuple(p[r][0] if r in p else getattr(NEO_HOOKE, r) for r in swept)
+        if values not in solids:
+            solids[values] = (material if material is not None and not swept
+                              else material_of(study, p))
+        points.add(tuple(p[f][0] for f in FACTORS) + values)
+    points = sorted(points)
     axes = {f: tuple(sorted({p[i] for p in points})) for i, f in enumerate(FACTORS)}
     need = {}
-    for C10, t, h, gamma in points:
+    for p in points:
+        C10, t, h, gamma = p[:4]
         g = gamma_hat(gamma, C10, study.R_mm)
-        need[t, h] = max(need.get((t, h), 0.0), g)
+        need[t, h, p[4:]] = max(need.get((t, h, p[4:]), 0.0), g)
     shells = []
-    for (t, h), g in sorted(need.items()):
+    for (t, h, values), g in sorted(need.items()):
+        m = solids[values]
         key = pathset_key(t, h, study.interface, study.mesh, study.delta_max_over_R,
-                          gamma_max_bucket(g), settings, material)
-        shells.append(Shell(t, h, g, key, fingerprint(key), material))
-    return Plan(study, axes, tuple(points), tuple(shells), settings)
+                          gamma_max_bucket(g), settings, m)
+        shells.append(Shell(t, h, g, key, fingerprint(key), m))
+    ratio_axes = ({r: tuple(sorted({p[4 + j] for p in points})) for j, r in enumerate(swept)}
+                  if swept else None)
+    return Plan(study, axes, tuple(points), tuple(shells), settings, ratio_axes,
+                solids if swept else None)
 
 
 def restrict(ps: PathSet, delta_max: float) -> PathSet:

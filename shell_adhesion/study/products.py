@@ -45,12 +45,27 @@ def write_tables(ds: xr.Dataset, out_dir) -> list:
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     written = []
-    for name, make in (("cases", cases_table), ("paper", comparison_table)):
-        table = make(ds)
+    base = base_material(ds)
+    for name, make, cube in (("cases", cases_table, ds), ("paper", comparison_table, base)):
+        if name == "paper" and ds.attrs.get("material_model", "neo_hooke") != "neo_hooke":
+            continue        # the paper's values are neo-Hookean
+        table = make(cube)
         for fmt in FORMATS:
             written.append(write_text_atomic(out / f"{name}.{fmt}", render(table, fmt)))
-    written.append(write_text_atomic(out / "analysis.txt", summary(ds) + "\n"))
+    written.append(write_text_atomic(out / "analysis.txt", summary(base) + "\n"))
     return written
+
+
+def base_material(ds: xr.Dataset) -> xr.Dataset:
+    """The cube at the study's base solid: a swept material ratio (a dimension such as
+    C01_over_C10) at its value in the material block, else its first value."""
+    from .dataset import DIMS
+    at = {}
+    for d in ds["status"].dims:
+        if d not in DIMS:
+            v = ds.attrs.get(f"material_{d}")
+            at[d] = v if v is not None and v in ds[d].values else ds[d].values[0]
+    return ds.sel(at) if at else ds
 
 
 def write_products(results_nc, formats=("png", "pdf")) -> Products:
@@ -64,7 +79,7 @@ def write_products(results_nc, formats=("png", "pdf")) -> Products:
     t1 = time.perf_counter()
     p.tables = write_tables(ds, tables_dir(path))
     t2 = time.perf_counter()
-    p.figures, p.skipped = write_figures(ds, figures_dir(path), formats)
+    p.figures, p.skipped = write_figures(base_material(ds), figures_dir(path), formats)
     t3 = time.perf_counter()
     p.seconds = dict(read=t1 - t0, tables=t2 - t1, figures=t3 - t2, total=t3 - t0)
     return p

@@ -31,6 +31,7 @@ from shell_adhesion.catalogue.atomic import clean_temporaries
 from shell_adhesion.catalogue.store import INDEX
 from shell_adhesion.solver.case import (loading_views, pathset_of, relaxation_starts,
                                         relaxation_task, solve_loading)
+from shell_adhesion.solver.material import NEO_HOOKE
 from shell_adhesion.solver.path import LoadingPath, Settings
 from shell_adhesion.solver.pathset_dataset import (from_dataset, relaxation_from_dataset,
                                                    relaxation_to_dataset, to_dataset)
@@ -82,12 +83,13 @@ def _check_source(source_sha256):
             "restart the client process and the workers")
 
 
-def loading_task(t, h, interface, mesh, delta_max, settings, source_sha256=None):
-    """Loading path of one shell: (loading without displacement fields, relaxation
-    starts, info, loading views)."""
+def loading_task(t, h, interface, mesh, delta_max, settings, source_sha256=None,
+                 material=NEO_HOOKE):
+    """Loading path of one shell of `material`: (loading without displacement fields,
+    relaxation starts, info, loading views)."""
     _check_source(source_sha256)
     t0 = time.perf_counter()
-    d, loading = solve_loading(t, h, interface, mesh, delta_max, settings)
+    d, loading = solve_loading(t, h, interface, mesh, delta_max, settings, material=material)
     starts = relaxation_starts(loading, d.capmesh)
     light = LoadingPath(loading.interface,
                         tuple(replace(s, x=s.x[:0]) for s in loading.states), loading.timer)
@@ -97,11 +99,12 @@ def loading_task(t, h, interface, mesh, delta_max, settings, source_sha256=None)
 
 
 def relax_task(t, h, interface, mesh, start, gamma_max, settings, source_sha256=None,
-               views=False):
+               views=False, material=NEO_HOOKE):
     """One relaxation path: (Relaxation, seconds); `views` keeps its profiles."""
     _check_source(source_sha256)
     t0 = time.perf_counter()
-    r = relaxation_task(t, h, interface, mesh, start, gamma_max, settings, views)
+    r = relaxation_task(t, h, interface, mesh, start, gamma_max, settings, views,
+                        material=material)
     return r, time.perf_counter() - t0
 
 
@@ -251,7 +254,7 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
     for s in shells:
         f = client.submit(loading_task, s.t_over_R, s.h_over_R, st.interface, st.mesh,
                           st.delta_max_over_R, plan.settings, s.key["solver_source"],
-                          pure=False,
+                          s.material, pure=False,
                           key=f"loading-{s.fingerprint[:12]}-{uuid.uuid4().hex[:8]}")
         owner[f] = (_Job(s, time.perf_counter()), None)
         pending.add(f)
@@ -335,7 +338,7 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
                         continue
                 g = client.submit(relax_task, s.t_over_R, s.h_over_R, st.interface, st.mesh,
                                   start, s.gamma_max_hat, plan.settings,
-                                  s.key["solver_source"], views, pure=False,
+                                  s.key["solver_source"], views, s.material, pure=False,
                                   key=f"relax-{s.fingerprint[:12]}-{i}-{uuid.uuid4().hex[:8]}")
                 owner[g] = (job, (i, part))
                 pending.add(g)
@@ -475,7 +478,7 @@ def _execute(plan, out_dir, output, catalogue, scheduler, client, show, workers,
                 missing.append(s)
             else:
                 entry, ds = hit
-                served[s.t_over_R, s.h_over_R] = (
+                served[s.t_over_R, s.h_over_R, s.material] = (
                     entry.fingerprint, restrict(from_dataset(ds), study.delta_max_over_R))
                 reused.append(s.fingerprint)
         progress = Progress([("loading paths", len(missing), "shells"),
@@ -498,8 +501,9 @@ def _execute(plan, out_dir, output, catalogue, scheduler, client, show, workers,
                     compute(plan, missing, cat, client=local, tally=tally, progress=progress)
         for s in missing:
             if s.fingerprint in tally.computed:
-                served[s.t_over_R, s.h_over_R] = (s.fingerprint, tally.computed[s.fingerprint])
-        failed_th = {(s.t_over_R, s.h_over_R): tally.failed[s.fingerprint]
+                served[s.t_over_R, s.h_over_R, s.material] = (
+                    s.fingerprint, tally.computed[s.fingerprint])
+        failed_th = {(s.t_over_R, s.h_over_R, s.material): tally.failed[s.fingerprint]
                      for s in missing if s.fingerprint in tally.failed}
         history = (f"{time.strftime('%Y-%m-%dT%H:%M:%S%z')} shell-adhesion "
                    f"{solver.__version__}: run_study {study.source}")

@@ -47,13 +47,17 @@ def cases_table(ds: xr.Dataset) -> Table:
     and eta [1]."""
     c = ok_cases(ds)
     R = R_mm(ds)
+    ratios = [d for d in ds["status"].dims if d not in _CASE_COLUMNS and d not in
+              ("t_over_R", "h_over_R")]      # swept material ratios (C01_over_C10, ...)
     columns = ("R [mm]", _header(ds, "t_mm", "t"), _header(ds, "h_mm", "h"),
+               *(_header(ds, k, k) for k in ratios),
                *(_header(ds, k, label) for k, label in _CASE_COLUMNS.items()))
-    data = [c[k].values for k in ("t_mm", "h_mm", *_CASE_COLUMNS)]
+    data = [c[k].values for k in ("t_mm", "h_mm", *ratios, *_CASE_COLUMNS)]
     rows = tuple((R, *(float(x[i]) for x in data)) for i in range(c.sizes["case"]))
     study = ds.attrs.get("study_name", "")
+    material = f", material {ds.attrs['material']}" if "material" in ds.attrs else ""
     title = (f"Pull-off of each case (study {study}, mesh {ds.attrs.get('mesh', '?')}, "
-             f"interface {ds.attrs.get('interface', '?')})")
+             f"interface {ds.attrs.get('interface', '?')}{material})")
     return Table(title, columns, rows)
 
 

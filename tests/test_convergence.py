@@ -11,6 +11,9 @@ from shell_adhesion.solver.case import solve_loading
 from conftest import GAMMA_HAT, base_case
 from test_paper import loading_P
 
+# the fine mesh (20k dofs) takes minutes: `python -m pytest -m slow` runs it
+pytestmark = pytest.mark.slow
+
 
 @pytest.fixture(scope="module")
 def meshes():

@@ -7,6 +7,9 @@ from shell_adhesion.solver.scaling import force_N, gamma_hat, length_mm
 
 from conftest import _pool
 
+# the solid hemisphere on the default mesh takes about 2 minutes: `python -m pytest -m slow` runs it
+pytestmark = pytest.mark.slow
+
 R_MM, C10, GAMMA = 20.0, 0.3, 1.0
 
 

@@ -14,6 +14,9 @@ from shell_adhesion.solver.path import relax
 
 from conftest import C10_MPA, GAMMA_HAT, R_MM, base_case
 
+# the base shell on the default mesh takes about 2 minutes: `python -m pytest -m slow` runs it
+pytestmark = pytest.mark.slow
+
 F = C10_MPA * R_MM ** 2      # force unit, N
 
 

@@ -7,12 +7,18 @@ import subprocess
 import sys
 import time
 
+import pytest
+
 import xarray as xr
 
 from shell_adhesion.catalogue import Catalogue, list_entries
 from shell_adhesion.study.run import execute, summary
 
 from conftest import ENV, REPO
+
+# a two-shell study killed between its shells (about 1.5 minutes; test_study_faults kills
+# one in the middle of a shell in CI): `python -m pytest -m slow` runs it
+pytestmark = pytest.mark.slow
 
 # two shells (a thin shell, then a costlier solid cap) on one worker: dask runs the tasks
 # in submission order, so the thin shell is stored seconds before the solid one

@@ -5,10 +5,9 @@ import subprocess
 import sys
 import textwrap
 
-import numpy as np
 import pytest
 
-from shell_adhesion.solver.case import relax_from, relaxation_starts
+from shell_adhesion.solver.case import relaxation_starts
 from shell_adhesion.solver.path import ConvergenceError, Settings, load
 
 from conftest import ENV, REPO

@@ -112,14 +112,20 @@ def _material_text(m):
     return ", ".join(parts if m["model"] == "neo_hooke" else [m["model"], *parts])
 
 
-def _workers(text):
-    try:
-        value = int(text)
-    except ValueError:
-        value = 0
-    if not 1 <= value <= 4096:
-        raise argparse.ArgumentTypeError(f"{text!r} must be an integer from 1 to 4096")
-    return value
+def _integer(low, high):
+    """argparse type: an integer from low to high."""
+    def parse(text):
+        try:
+            value = int(text)
+        except ValueError:
+            value = low - 1
+        if not low <= value <= high:
+            raise argparse.ArgumentTypeError(f"{text!r} must be an integer from {low} to {high}")
+        return value
+    return parse
+
+
+_workers = _integer(1, 4096)
 
 
 def _run_study(ns):
@@ -179,14 +185,7 @@ def _run_tables(ns):
     return 0
 
 
-def _dpi(text):
-    try:
-        value = int(text)
-    except ValueError:
-        value = 0
-    if not 20 <= value <= 1200:
-        raise argparse.ArgumentTypeError(f"{text!r} must be an integer from 20 to 1200")
-    return value
+_dpi = _integer(20, 1200)
 
 
 def _run_plot(ns):

@@ -27,6 +27,7 @@ from shell_adhesion.solver import INTERFACES, ConvergenceError, InputError, __ve
 from . import case as case_api
 
 FIGURE_FORMATS = ("png", "pdf", "svg")
+HARD_EXIT_S = 45.0      # a run still ending this long after Ctrl-C is ended at once
 # the flag of each input of `case` (study.case.case_input names the fields this way)
 CASE_FLAGS = dict(R_mm="--R", t_mm="--t", h_mm="--h", C10_MPa="--C10",
                   gamma_J_m2="--gamma", delta_max_mm="--delta-max", interface="--interface",
@@ -130,6 +131,9 @@ _workers = _integer(1, 4096)
 
 def _run_study(ns):
     """`run`: the study through study.run.run_study (one orchestration for API and CLI)."""
+    from shell_adhesion.catalogue import default_dir
+
+    from . import interrupt
     from .config import StudyError
     from .run import Interrupted, RunInputError, SchedulerLost, dry_run, exit_code, run_study
 
@@ -137,6 +141,11 @@ def _run_study(ns):
         if ns.dry_run:
             print(dry_run(ns.study, ns.catalogue, ns.workers, ns.scheduler))
             return 0
+        kept_in = ns.catalogue if ns.catalogue is not None else default_dir()
+        interrupt.hard_exit_after(
+            HARD_EXIT_S, "shell-adhesion: interrupted: the relaxation paths finished and are "
+            f"kept in the catalogue {kept_in} (shutting down took over {HARD_EXIT_S:g} s and "
+            "was cut short); run again to resume")
         ds = run_study(ns.study, out=ns.out, catalogue=ns.catalogue, scheduler=ns.scheduler,
                        progress=not ns.quiet, workers=ns.workers)
     except RunInputError as e:

@@ -36,7 +36,7 @@ from shell_adhesion.solver.path import LoadingPath, Settings
 from shell_adhesion.solver.pathset_dataset import (from_dataset, relaxation_from_dataset,
                                                    relaxation_to_dataset, to_dataset)
 
-from . import dataset
+from . import dataset, interrupt
 from .config import StudyError, load_study, validate
 from .keys import relaxation_part, solver_source_sha256
 from .plan import Plan, Shell, make_plan, restrict
@@ -46,6 +46,7 @@ from .progress import Progress
 DEFAULT_OUT = "results"
 CONNECT_TIMEOUT_S = 10.0    # a scheduler that does not answer in this time is not there
 LOST_AFTER_S = 10.0         # a scheduler unreachable this long is lost
+CLOSE_TIMEOUT_S = 10.0      # shutting down the local cluster takes at most this (each part)
 
 STAGES = ("loading paths", "relaxation paths", "energy method", "cube")
 
@@ -193,11 +194,17 @@ def _local_cluster(n_workers=None):
     finally:
         if main:
             signal.signal(signal.SIGINT, previous)
+    client = None
     try:
-        with Client(cluster) as client:
-            yield client
+        client = Client(cluster)
+        yield client
     finally:
-        cluster.close()
+        # bounded: after Ctrl-C a worker may be deep in a factorisation
+        for closing in ((client.close,) if client is not None else ()) + (cluster.close,):
+            try:
+                closing(timeout=CLOSE_TIMEOUT_S)
+            except Exception:       # what is left is ended with this process
+                pass
 
 
 def _has_bokeh() -> bool:
@@ -360,6 +367,7 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
 
     unreachable_since = None
     while pending:
+        interrupt.check()           # Ctrl-C is taken here, never inside dask or a write
         try:
             done, _ = wait(list(pending), timeout=1.0, return_when="FIRST_COMPLETED")
         except TimeoutError:
@@ -433,8 +441,9 @@ def execute(study, out=None, catalogue=None, scheduler=None, progress=True, work
         if scheduler and _held_by_index(plan, catalogue) < len(plan.shells):
             client = _connect_external(scheduler)       # before anything is created
         try:
-            return _execute(plan, out_dir, output, catalogue, scheduler, client, progress,
-                            workers, t0)
+            with interrupt.watched():
+                return _execute(plan, out_dir, output, catalogue, scheduler, client, progress,
+                                workers, t0)
         finally:
             if client is not None:
                 try:
@@ -489,7 +498,8 @@ def _execute(plan, out_dir, output, catalogue, scheduler, client, show, workers,
             if client is not None:
                 address = getattr(client.scheduler, "address", None) or scheduler
                 try:
-                    compute(plan, missing, cat, client, tally, progress, external=True)
+                    with interrupt.deferred():
+                        compute(plan, missing, cat, client, tally, progress, external=True)
                 except (SchedulerLost, OSError, TimeoutError, CancelledError) as e:
                     why = (f"no answer for {LOST_AFTER_S:g} s" if isinstance(e, SchedulerLost)
                            else type(e).__name__)
@@ -498,7 +508,9 @@ def _execute(plan, out_dir, output, catalogue, scheduler, client, show, workers,
                 with _local_cluster(workers) as local:
                     if _has_bokeh():
                         progress.say(f"dask dashboard: {local.dashboard_link}")
-                    compute(plan, missing, cat, client=local, tally=tally, progress=progress)
+                    with interrupt.deferred():
+                        compute(plan, missing, cat, client=local, tally=tally,
+                                progress=progress)
         for s in missing:
             if s.fingerprint in tally.computed:
                 served[s.t_over_R, s.h_over_R, s.material] = (

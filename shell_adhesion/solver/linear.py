@@ -6,8 +6,9 @@ Two factorisations of the same matrix:
   prescribed dofs' rows and columns replaced by the identity.  The sparsity pattern is then
   the discretisation's, whatever the constraints, so the ordering and the symbolic analysis
   are done once per path and every later factorisation is numeric only.  QDLDL does not
-  pivot: each solve is checked (finite, backward error below `BACKWARD_ERROR`), and a
-  factorisation that fails the check is redone by SuperLU.
+  pivot: every solve is checked for finite values and the first solve of each
+  factorisation for its backward error (below `BACKWARD_ERROR`); a factorisation that
+  fails is redone by SuperLU.
 - "superlu": scipy's SuperLU of the free block (the fallback, and the only one when QDLDL
   cannot be imported or the fast solver is switched off).
 
@@ -84,7 +85,8 @@ class LinearSolver:
         self.rows = np.repeat(np.arange(n), np.diff(indptr))
         self.cols = np.asarray(indices)
         self._qdldl = None
-        self._plan_key = None
+        self._generation = 0
+        self._plan_key = self._rows_key = None
         if self.backend == "qdldl":
             # the upper triangle in CSC is the lower triangle of the symmetric CSR
             lower = np.flatnonzero(self.cols <= self.rows)
@@ -139,13 +141,21 @@ class LinearSolver:
         return Factor(lu.solve, K, c, self.timer)
 
     # QDLDL of the whole pattern, prescribed dofs as identity rows
+    def _identity_rows(self, c):
+        """Positions (in the lower-triangle data) to zero and to set to 1 for c."""
+        if self._rows_key is not c:
+            fixed = c.free_pos < 0
+            rows, cols = self.rows[self._low], self.cols[self._low]
+            self._rows_cache = (np.flatnonzero(fixed[rows] | fixed[cols]),
+                                self._low_diag[fixed[rows[self._low_diag]]])
+            self._rows_key = c
+        return self._rows_cache
+
     def _factor_qdldl(self, K, c):
-        fixed = c.free_pos < 0
+        zero, one = self._identity_rows(c)
         data = K.data[self._low]
-        rows, cols = self.rows[self._low], self.cols[self._low]
-        data[fixed[rows] | fixed[cols]] = 0.0
-        diag = self._low_diag[fixed[rows[self._low_diag]]]
-        data[diag] = 1.0
+        data[zero] = 0.0
+        data[one] = 1.0
         A = sp.csc_matrix((data, self._low_indices, self._low_indptr), shape=(self._n,) * 2)
         try:
             if self._qdldl is None:
@@ -156,27 +166,29 @@ class LinearSolver:
         except (RuntimeError, ValueError):   # a zero pivot: QDLDL does not pivot
             self._qdldl = None
             return None
-        solver, free = self._qdldl, c.free
+        self._generation += 1
+        solver, free, n, generation = self._qdldl, c.free, self._n, self._generation
         K_max = float(np.abs(K.data).max())
+        checked = []
 
         def solve(b):
-            x = np.zeros(self._n)
+            if self._generation != generation or solver is not self._qdldl:
+                raise _Inaccurate   # QDLDL has refactorised since: this factor is gone
+            x = np.zeros(n)
             x[free] = b
             x = solver.solve(x)
             xf = x[free]
-            x[fixed] = 0.0
-            res = (K @ x)[free] - b
-            scale = K_max * np.abs(xf).max() + np.abs(b).max()
-            if not (np.all(np.isfinite(xf)) and np.abs(res).max() <= BACKWARD_ERROR * scale):
+            if not np.all(np.isfinite(xf)):
                 raise _Inaccurate
+            if not checked:    # the backward error of the first solve vouches for the factor
+                x[c.free_pos < 0] = 0.0
+                res = (K @ x)[free] - b
+                if np.abs(res).max() > BACKWARD_ERROR * (K_max * np.abs(xf).max()
+                                                         + np.abs(b).max()):
+                    raise _Inaccurate
+                checked.append(True)
             return xf
 
-        # check the factorisation once now, so a bad pivot falls back before it is used
-        try:
-            solve(np.ones(len(free)))
-        except _Inaccurate:
-            self._qdldl = None
-            return None
         return Factor(_checked(solve, lambda: self._factor_superlu(K, c), self.timer), K, c,
                       self.timer)
 

@@ -141,7 +141,10 @@ class _Problem:
         return lu, dr_ddelta
 
     def solve(self, lu, rhs):
-        return lu.solve(rhs)
+        try:
+            return lu.solve(rhs)
+        except SingularTangent as err:
+            raise ConvergenceError(f"singular tangent ({err})") from None
 
     def converged(self, r, c):
         res = np.abs(r[c.free]).max()

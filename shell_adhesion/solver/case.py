@@ -284,7 +284,9 @@ def pathset_of(t, h, interface, mesh, delta_max, gamma_max, loading, relaxations
     (`provenance_stats`)."""
     views = tuple(views) + tuple(v for r in relaxations for v in r.views)
     views = tuple(sorted(views, key=lambda v: isinstance(v, StressMap)))  # profiles first
-    relaxations = tuple(replace(r, views=()) if r.views else r for r in relaxations)
+    # each path's timing lives on in the set's stats (timing_stats), not in the set
+    relaxations = tuple(replace(r, views=(), timing={}) if r.views or r.timing else r
+                        for r in relaxations)
     stats = {**provenance_stats(loading, relaxations), **stats}
     return PathSet(t, h, interface, mesh, delta_max, gamma_max,
                    loading.array("delta"), loading.array("P"), loading.array("a"),

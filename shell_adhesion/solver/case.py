@@ -96,6 +96,7 @@ class Relaxation:
     J_min: float = 1.0      # worst pointwise J and in-plane det F over the path
     J_max: float = 1.0
     detF_min: float = 1.0
+    timing: dict = field(default_factory=dict, compare=False)  # the path's Timer (not stored)
 
     @property
     def usable(self) -> bool:
@@ -112,7 +113,7 @@ class Relaxation:
                    path.array("dP_ddelta"), path.ended_by, path.penetration,
                    path.centre_lifts or start_off, path.timer.newton_iterations,
                    relaxation_views(d, path) if d is not None else (),
-                   float(inversion), q.J_min, q.J_max, q.detF_min)
+                   float(inversion), q.J_min, q.J_max, q.detF_min, path.timer.as_dict())
 
 
 def loading_views(d: Discretisation, loading: LoadingPath) -> tuple:
@@ -248,10 +249,31 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
                  loading_states=len(loading.states),
                  loading_newton_iterations=loading.timer.newton_iterations,
                  relaxation_newton_iterations=sum(r.newton_iterations for r in relaxations),
-                 assembly_s=loading.timer.assembly, linear_solve_s=loading.timer.solve,
-                 loading_s=t1 - t0, relaxation_s=t2 - t1)
+                 assembly_s=loading.timer.assembly,
+                 linear_solve_s=loading.timer.factor + loading.timer.solve,
+                 loading_s=t1 - t0, relaxation_s=t2 - t1,
+                 timing=timing_stats(loading.timer, relaxations))
     return pathset_of(t, h, interface, mesh, delta_max, gamma_max, loading, relaxations,
                       stats, loading_views(d, loading)), d, loading
+
+
+def timing_stats(loading_timer, relaxations) -> dict:
+    """Where the FE time went, loading and relaxation paths together (seconds of one
+    process each, so with parallel paths their sum exceeds the wall time), the counts, and
+    the linear solver used (solver.linear; `solver_fallbacks`: QDLDL factorisations redone
+    by SuperLU)."""
+    timers = [loading_timer.as_dict()] + [r.timing for r in relaxations if r.timing]
+    total = lambda k: sum(t[k] for t in timers)
+    backends = sorted({t["backend"] for t in timers if t["backend"]})
+    return {"assembly_s": round(total("assembly"), 4),
+            "factorisation_s": round(total("factor"), 4),
+            "solve_s": round(total("solve"), 4),
+            "event_location_s": round(total("event"), 4),
+            "newton_iterations": int(total("newton_iterations")),
+            "factorisations": int(total("factorisations")),
+            "symbolic_analyses": int(total("symbolic")),
+            "linear_solver": "+".join(backends),
+            "solver_fallbacks": int(total("fallbacks"))}
 
 
 def pathset_of(t, h, interface, mesh, delta_max, gamma_max, loading, relaxations, stats,
@@ -262,7 +284,9 @@ def pathset_of(t, h, interface, mesh, delta_max, gamma_max, loading, relaxations
     (`provenance_stats`)."""
     views = tuple(views) + tuple(v for r in relaxations for v in r.views)
     views = tuple(sorted(views, key=lambda v: isinstance(v, StressMap)))  # profiles first
-    relaxations = tuple(replace(r, views=()) if r.views else r for r in relaxations)
+    # each path's timing lives on in the set's stats (timing_stats), not in the set
+    relaxations = tuple(replace(r, views=(), timing={}) if r.views or r.timing else r
+                        for r in relaxations)
     stats = {**provenance_stats(loading, relaxations), **stats}
     return PathSet(t, h, interface, mesh, delta_max, gamma_max,
                    loading.array("delta"), loading.array("P"), loading.array("a"),

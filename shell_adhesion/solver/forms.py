@@ -9,6 +9,7 @@ discretisation; with a compressible one (D1 > 0) the pressure rows gain -(D1 C10
 same sparsity.
 """
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
@@ -44,6 +45,22 @@ class Discretisation:
     @property
     def ndof(self) -> int:
         return 2 * self.n2 + self.n1
+
+    @cached_property
+    def B_eq(self) -> np.ndarray:
+        """B as contiguous (E, Q, 5, 18) blocks, one per quadrature point (assembly)."""
+        return np.ascontiguousarray(self.B.transpose(2, 3, 0, 1))
+
+    @cached_property
+    def B_eT(self) -> np.ndarray:
+        """B as contiguous (E, 18, Q * 5) blocks, one per element (assembly)."""
+        E, Q = self.w.shape
+        return np.ascontiguousarray(self.B_eq.reshape(E, Q * 5, 18).transpose(0, 2, 1))
+
+    @cached_property
+    def Np_eq(self) -> np.ndarray:
+        """Pressure shape functions as contiguous (E, Q, 4) blocks (assembly)."""
+        return np.ascontiguousarray(self.Np.transpose(1, 2, 0))
 
     def ur(self, nodes):
         return np.asarray(nodes)
@@ -138,10 +155,12 @@ def tangent(d: Discretisation, x):
     w = d.w
     r = _scatter_vector(d, np.einsum("iaeq,ieq->ae", d.B, dL * w), dLdp * w)
     E, Q = w.shape
-    Bq = d.B.transpose(2, 3, 0, 1)                            # (E, Q, 5, 18)
-    DB = np.matmul(np.moveaxis(d2L * w, (0, 1), (2, 3)), Bq)  # (E, Q, 5, 18)
-    Kuu = np.matmul(Bq.reshape(E, Q * 5, 18).transpose(0, 2, 1), DB.reshape(E, Q * 5, 18))
-    Kup = np.einsum("iaeq,ieq,ceq->eac", d.B, dJ * w, d.Np)
+    # stacked products of contiguous blocks: Kuu = sum_q B^T D B, Kup = sum_q B^T dJ Np^T
+    D = np.ascontiguousarray(np.moveaxis(d2L * w, (0, 1), (2, 3)))   # (E, Q, 5, 5)
+    DB = np.matmul(D, d.B_eq)                                        # (E, Q, 5, 18)
+    Kuu = np.matmul(d.B_eT, DB.reshape(E, Q * 5, 18))
+    dJB = np.matmul(np.ascontiguousarray(np.moveaxis(dJ * w, 0, 2))[:, :, None, :], d.B_eq)
+    Kup = np.matmul(dJB[:, :, 0, :].transpose(0, 2, 1), d.Np_eq)      # (E, 18, 4)
     Ke = np.zeros((E, 22, 22))
     Ke[:, :18, :18] = Kuu
     Ke[:, :18, 18:] = Kup

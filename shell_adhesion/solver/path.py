@@ -13,12 +13,11 @@ import math
 import time
 
 import numpy as np
-import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 
 from .contact import (Constraints, constraints, contact_reactions, deformed_radius, gaps,
                       rim_load)
 from .forms import Discretisation, strain_energy, tangent
+from .linear import LinearSolver, SingularTangent, Timer
 from .quality import Quality, quality, worst
 
 
@@ -45,6 +44,8 @@ class Settings:
     max_events_per_node: int = 4   # contact events per outer node during loading
     max_relocations: int = 20      # re-located events within one loading step
     max_points: int = 400     # states per relaxation path
+    # speed-ups (solver.linear); each can be switched off, the results agree to round-off
+    fast_solver: bool = True  # QDLDL LDL^T, symbolic analysis once per path; False: SuperLU
 
 
 @dataclass(frozen=True, eq=False)
@@ -63,14 +64,6 @@ class State:
     dP_ddelta_left: float = np.nan  # dP/ddelta before the joining node was held
     quality: Quality = None   # element quality of the state (solver.quality)
     centre_off: bool = False  # the centre of the contact zone has left (or is pulled off) the plane
-
-
-@dataclass
-class Timer:
-    assembly: float = 0.0
-    solve: float = 0.0
-    newton_iterations: int = 0
-    solves: int = 0
 
 
 @dataclass(frozen=True, eq=False)
@@ -128,7 +121,7 @@ class _Problem:
         self.d, self.interface, self.s, self.timer = d, interface, settings, timer
         cm = d.capmesh
         self.Z = cm.nodes[1, cm.outer]
-        self._plan_key = None
+        self.linear = LinearSolver(d.csr_indptr, d.csr_indices, settings.fast_solver, timer)
 
     def assemble(self, x):
         t0 = time.perf_counter()
@@ -137,44 +130,21 @@ class _Problem:
         return K, r
 
     def factor(self, K, c: Constraints):
-        """LU of the free block of K, and d(residual of the free dofs)/d(delta)."""
-        t0 = time.perf_counter()
-        sel, indices, indptr = self._plan(K, c)
-        n = len(c.free)
-        # K is symmetric, so its CSR arrays restricted to the free block are also CSC
-        Kff = sp.csc_matrix((K.data[sel], indices, indptr), shape=(n, n))
+        """Factorisation of the free block of K, and d(residual of the free dofs)/d(delta)."""
         try:
-            lu = spla.splu(Kff, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0)
-        except RuntimeError:
-            try:
-                lu = spla.splu(Kff, permc_spec="COLAMD")
-            except RuntimeError as err:
-                raise ConvergenceError(f"singular tangent ({err})") from None
+            lu = self.linear.factor(K, c)
+        except SingularTangent as err:
+            raise ConvergenceError(f"singular tangent ({err})") from None
         e = np.zeros(self.d.ndof)
         e[c.rimz] = 1.0
         dr_ddelta = -(K @ e)[c.free]
-        self.timer.solve += time.perf_counter() - t0
-        self.timer.solves += 1
         return lu, dr_ddelta
 
-    def _plan(self, K, c):
-        key = id(c)
-        if self._plan_key != key:
-            rows = np.repeat(np.arange(K.shape[0]), np.diff(K.indptr))
-            sel = (c.free_pos[rows] >= 0) & (c.free_pos[K.indices] >= 0)
-            sub_rows = c.free_pos[rows[sel]]
-            indptr = np.concatenate([[0], np.cumsum(np.bincount(sub_rows, minlength=len(c.free)))])
-            self._plan_cache = (np.flatnonzero(sel), c.free_pos[K.indices[sel]].astype(np.int32),
-                                indptr.astype(np.int32))
-            self._plan_key = key
-            self._plan_constraints = c
-        return self._plan_cache
-
     def solve(self, lu, rhs):
-        t0 = time.perf_counter()
-        out = lu.solve(rhs)
-        self.timer.solve += time.perf_counter() - t0
-        return out
+        try:
+            return lu.solve(rhs)
+        except SingularTangent as err:
+            raise ConvergenceError(f"singular tangent ({err})") from None
 
     def converged(self, r, c):
         res = np.abs(r[c.free]).max()
@@ -184,8 +154,18 @@ class _Problem:
     def newton(self, c: Constraints, x, delta, target=None):
         """Equilibrium at fixed delta, or (target = outer node) where its gap is zero.
 
-        Returns (x, delta, K, r, history).  Raises ConvergenceError.
+        Returns (x, delta, K, r, history).  Raises ConvergenceError.  The time of the
+        bordered solves (target given) is counted as event location.
         """
+        if target is None:
+            return self._newton(c, x, delta)
+        t0 = time.perf_counter()
+        try:
+            return self._newton(c, x, delta, target)
+        finally:
+            self.timer.event += time.perf_counter() - t0
+
+    def _newton(self, c: Constraints, x, delta, target=None):
         d = self.d
         if not (math.isfinite(delta) and np.all(np.isfinite(x))):
             raise ConvergenceError(f"non-finite start of Newton (delta = {delta!r})")

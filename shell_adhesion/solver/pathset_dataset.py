@@ -61,8 +61,9 @@ _ATTRS = {"t": "t_over_R", "h": "h_over_R", "interface": "interface", "mesh": "m
 
 
 def _stored(cls):
-    """The fields stored as columns (views have their own variables)."""
-    return [f for f in fields(cls) if f.name != "views"]
+    """The fields stored as columns (views have their own variables; a path's timing is
+    summed into the set's stats)."""
+    return [f for f in fields(cls) if f.name not in ("views", "timing")]
 
 
 def _is_array(f) -> bool:

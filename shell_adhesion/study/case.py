@@ -269,6 +269,7 @@ def _solve(inp: CaseInput, progress: bool) -> CaseResult:
         "wall_s": round(t3 - t0, 3),
         "time_split_s": {"loading": round(t1 - t0, 3), "relaxation": round(t2 - t1, 3),
                          "energy_method": round(t3 - t2, 3)},
+        "timing": {**ps.stats.get("timing", {}), "energy_method_s": round(t3 - t2, 4)},
         "tolerances": {"newton_rtol": settings.tol, "newton_atol": settings.atol,
                        "gap_tol_over_R": settings.gap_tol},
         "relaxation_gamma_max_over_C10R": gamma_max,

@@ -30,7 +30,7 @@ from shell_adhesion.catalogue import Catalogue, default_dir
 from shell_adhesion.catalogue.atomic import clean_temporaries
 from shell_adhesion.catalogue.store import INDEX
 from shell_adhesion.solver.case import (loading_views, pathset_of, relaxation_starts,
-                                        relaxation_task, solve_loading)
+                                        relaxation_task, solve_loading, timing_stats)
 from shell_adhesion.solver.material import NEO_HOOKE
 from shell_adhesion.solver.path import LoadingPath, Settings
 from shell_adhesion.solver.pathset_dataset import (from_dataset, relaxation_from_dataset,
@@ -300,8 +300,8 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
         stats.update(loading_states=len(job.loading.states),
                      loading_newton_iterations=timer.newton_iterations,
                      relaxation_newton_iterations=sum(r.newton_iterations for r in job.relaxations),
-                     assembly_s=timer.assembly, linear_solve_s=timer.solve,
-                     relaxation_s=job.seconds)
+                     assembly_s=timer.assembly, linear_solve_s=timer.factor + timer.solve,
+                     relaxation_s=job.seconds, timing=timing_stats(timer, job.relaxations))
         ps = pathset_of(s.t_over_R, s.h_over_R, st.interface, st.mesh, st.delta_max_over_R,
                         s.gamma_max_hat, job.loading, job.relaxations, stats, job.views)
         summary = dict(relaxations=len(ps.relaxations), loading_states=len(ps.loading_delta),

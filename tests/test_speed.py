@@ -1,0 +1,81 @@
+"""The speed-ups (solver.linear, Settings.fast_solver) change no result: with and without
+them, and with the fast solver unimportable, the numbers agree; the fallback is reported."""
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import shell_adhesion as sa
+from shell_adhesion.solver import linear
+from shell_adhesion.solver.case import solve_loading, solve_paths
+from shell_adhesion.solver.path import Settings
+
+FAST, SLOW = Settings(), Settings(fast_solver=False)
+
+
+def rel(a, b):
+    """Largest difference relative to the largest value (arrays of one path)."""
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    assert a.shape == b.shape
+    return np.abs(a - b).max() / max(np.abs(b).max(), 1e-300)
+
+
+def same_paths(ps, ref):
+    for name in ("loading_delta", "loading_P", "loading_U", "loading_a"):
+        assert rel(getattr(ps, name), getattr(ref, name)) <= 1e-6, name
+    assert len(ps.relaxations) == len(ref.relaxations)
+    for r, q in zip(ps.relaxations, ref.relaxations):
+        assert abs(r.a - q.a) <= 1e-12
+        for name in ("delta", "P", "U", "dP_ddelta"):
+            assert rel(getattr(r, name), getattr(q, name)) <= 1e-6, name
+
+
+@pytest.mark.parametrize("t, h, delta_max, gamma_max", [(0.15, 1.0, 0.02, 0.005),
+                                                         (0.02, 1.0, 0.03, 0.006)],
+                         ids=["base", "thin"])
+def test_fast_solver_changes_no_result(t, h, delta_max, gamma_max):
+    runs = {}
+    for name, settings in (("fast", FAST), ("slow", SLOW)):
+        runs[name] = solve_paths(t, h, "no_slip", "coarse", delta_max, gamma_max, settings)[0]
+    fast, slow = runs["fast"], runs["slow"]
+    same_paths(fast, slow)
+    assert fast.stats["timing"]["linear_solver"] == linear.backend(True)
+    assert slow.stats["timing"]["linear_solver"] == "superlu"
+
+
+def test_fast_solver_unimportable_falls_back_to_superlu():
+    code = ("import sys; sys.modules['qdldl'] = None\n"
+            "from shell_adhesion.solver import linear, path\n"
+            "print(linear.qdldl, linear.backend(True), path.Settings().fast_solver)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         timeout=120, check=True).stdout.split()
+    assert out == ["None", "superlu", "True"]
+
+
+def test_fallback_is_reported_and_gives_the_same_numbers(monkeypatch):
+    kw = dict(R_mm=20, t_mm=3, h_mm=20, C10_MPa=0.3, interface="no_slip", delta_max_mm=1.5,
+              mesh="coarse", progress=False)
+    fast, fast_backend = sa.solve_case(**kw), linear.backend(True)
+    monkeypatch.setattr(linear, "qdldl", None)      # as if `import qdldl` had failed
+    slow = sa.solve_case(**kw)
+    t_fast, t_slow = fast.provenance["timing"], slow.provenance["timing"]
+    assert t_slow["linear_solver"] == "superlu" and t_slow["symbolic_analyses"] == 0
+    assert t_fast["linear_solver"] == fast_backend
+    for t in (t_fast, t_slow):
+        assert t["factorisations"] >= t["newton_iterations"] > 0
+        assert min(t[k] for k in ("assembly_s", "factorisation_s", "solve_s",
+                                  "event_location_s", "energy_method_s")) >= 0
+    if t_fast["linear_solver"] == "qdldl":
+        assert t_fast["symbolic_analyses"] == 1      # the loading path's pattern, once
+    for name in ("loading_P", "loading_U", "loading_a"):
+        assert rel(getattr(fast.pathset, name), getattr(slow.pathset, name)) <= 1e-6, name
+
+
+@pytest.mark.skipif(linear.qdldl is None, reason="QDLDL not installed")
+def test_an_inaccurate_fast_factorisation_is_redone_by_superlu(monkeypatch):
+    _, ref = solve_loading(0.15, 1.0, "no_slip", "coarse", 0.03, SLOW)
+    monkeypatch.setattr(linear, "BACKWARD_ERROR", -1.0)   # every check fails
+    _, path = solve_loading(0.15, 1.0, "no_slip", "coarse", 0.03, FAST)
+    assert path.timer.fallbacks == path.timer.factorisations > 0
+    assert rel(path.array("P"), ref.array("P")) <= 1e-6

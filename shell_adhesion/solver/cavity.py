@@ -76,7 +76,7 @@ def check_cavity(mode, p=0.0, p0=0.0, p_atm=0.0, n=1.0, names=None):
 
     `names` maps mode, p, p0, p_atm, n to the caller's field names.
     """
-    nm = dict(mode="cavity", p="p", p0="p0", p_atm="p_atm", n="gas_exponent", **(names or {}))
+    nm = {**dict(mode="cavity", p="p", p0="p0", p_atm="p_atm", n="gas_exponent"), **(names or {})}
     if mode not in MODES:
         raise InputError(f"{nm['mode']}: {mode!r} must be one of {', '.join(MODES)}")
     for key, value in (("p", p), ("p0", p0), ("p_atm", p_atm), ("n", n)):

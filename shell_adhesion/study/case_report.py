@@ -28,9 +28,12 @@ def _values(result):
     L = lambda x: length_mm(np.asarray(x, dtype=float), R)
     F = lambda x: force_N(np.asarray(x, dtype=float), C10, R)
     E = lambda x: energy_mJ(np.asarray(x, dtype=float), C10, R)
+    V = lambda x: np.asarray(x, dtype=float) * R ** 3
+    kPa = lambda x: np.asarray(x, dtype=float) * C10 * 1e3
     loading = dict(delta=L(ps.loading_delta), P=F(ps.loading_P), a=L(ps.loading_a),
-                   U=E(ps.loading_U))
+                   U=E(ps.loading_U), V=V(ps.loading_V), p=kPa(ps.loading_p))
     relaxations = [dict(a=float(L(r.a)), delta=L(r.delta), P=F(r.P), U=E(r.U),
+                        V=V(r.V), p=kPa(r.p),
                         ended_by=r.ended_by, centre_lifts=bool(r.centre_lifts),
                         penetration=bool(r.penetration), usable=r.usable)
                    for r in ps.relaxations] if result.adhesion else []
@@ -70,12 +73,17 @@ def as_dict(result) -> dict:
            "material": material_MPa(result.input.material, result.input.C10_MPa),
            "loading": {"delta_mm": _list(loading["delta"]), "P_N": _list(loading["P"]),
                        "a_mm": _list(loading["a"]), "U_E_mJ": _list(loading["U"])}}
+    closed = result.input.cavity.closed
+    if closed:   # the enclosed volume and the gauge pressure of a closed cavity
+        out["loading"].update(V_mm3=_list(loading["V"]), p_kPa=_list(loading["p"]))
     if adhesion:
         out["relaxation"] = [
             {"a_mm": _num(r["a"]), "delta1_mm": _num(r["delta"][0]), "P1_N": _num(r["P"][0]),
              "delta_mm": _list(r["delta"]), "P_N": _list(r["P"]), "U_E_mJ": _list(r["U"]),
              "ended_by": r["ended_by"], "centre_lifts": r["centre_lifts"],
-             "penetration": r["penetration"]} for r in relaxations]
+             "penetration": r["penetration"],
+             **({"V_mm3": _list(r["V"]), "p_kPa": _list(r["p"])} if closed else {})}
+            for r in relaxations]
         out["equilibrium"] = [
             {"gamma_J_m2": g, "a_mm": _list(c["a"]), "P_N": _list(c["P"]),
              "delta_mm": _list(c["delta"]),

@@ -258,3 +258,14 @@ def test_sealed_pull_off_is_more_tensile_than_open():
     assert P_star["open"] < 0
     # about 0.1 % for the base shell at one atmosphere (coarse mesh: -0.014220 / -0.014204)
     assert P_star["sealed"] < P_star["open"] * (1 + 3e-4)
+
+
+def test_P_is_the_total_contact_force(pressurised):
+    """P (grips on rim and lid) equals the plane's total reaction: the lid's share counts."""
+    from shell_adhesion.solver.contact import contact_reactions, rim_load
+    _, d, loading, rel = pressurised
+    for s in (loading.states[-1], rel.states[-1]):
+        r = residual(d, s.x)
+        assert rim_load(d, r) == pytest.approx(s.P, rel=1e-12)
+        total = contact_reactions(d, r, s.held).sum()
+        assert total == pytest.approx(s.P, abs=1e-8 * abs(loading.states[-1].P))

@@ -3,7 +3,8 @@ gamma = 30 J/m^2, no_slip): the README figure, the membrane limit and the cost.
 
     python benchmarks/cavity.py figure [mesh] [delta_max_mm]   docs/figures/cavity.png
     python benchmarks/cavity.py membrane [mesh]                P / (p pi a^2) of an inflated thin shell
-    python benchmarks/cavity.py cost [mesh]                    wall time and Newton iterations
+    python benchmarks/cavity.py cost [mesh] [delta_max_mm] [repeat]   whole shell vs open
+    python benchmarks/cavity.py iteration [mesh]               one Newton iteration vs open
 
 figure: P(delta) on loading and along the gamma = 30 J/m^2 equilibrium curve, with the
 fixed-load pull-off point, and the gauge pressure p(delta) on loading and relaxation, for
@@ -55,15 +56,18 @@ def figure(mesh="default", delta_max_mm=5.0):
             ps, seconds, iters = solve(name, mesh, delta_max_mm, pool)
             eq, po = ps.pull_off(g)
             c = COLOURS[name]
-            ax.plot(ps.loading_delta * R, ps.loading_P * F, c, lw=1.2, label=f"{name}: loading")
+            ax.plot(ps.loading_delta * R, ps.loading_P * F, c, lw=1.2,
+                    label=f"{name}: P* = {po.P_star * F:.3f} N")
             ax.plot(eq.delta * R, eq.P * F, c, ls="--", lw=1)
-            ax.plot(po.delta_star * R, po.P_star * F, "o", color=c, ms=6)
-            ax.annotate(f"{po.P_star * F:.2f} N", (po.delta_star * R, po.P_star * F),
-                        textcoords="offset points", xytext=(6, -12), color=c, fontsize=8)
-            if CASES[name].closed:
-                bx.plot(ps.loading_delta * R, ps.loading_p * KPA, c, lw=1.2, label=name)
+            ax.plot(po.delta_star * R, po.P_star * F, "o", color=c, ms=5)
+            if CASES[name].sealed:
+                bx.plot(ps.loading_delta * R, ps.loading_p * KPA, c, lw=1.5, label="loading")
                 for r in ps.usable():
-                    bx.plot(r.delta * R, r.p * KPA, c, lw=0.4, alpha=0.5)
+                    bx.plot(r.delta * R, r.p * KPA, c, lw=0.4, alpha=0.6)
+                near = min(ps.usable(), key=lambda r: abs(r.a - po.a_star))
+                p_star = np.interp(po.delta_star, near.delta[::-1], near.p[::-1]) * KPA
+                bx.plot(po.delta_star * R, p_star, "o", color=c, ms=5,
+                        label=f"pull-off: p = {p_star:.2f} kPa")
             print(f"{name:24s} P* = {po.P_star * F:8.4f} N, delta* = {po.delta_star * R:7.4f} mm, "
                   f"a* = {po.a_star * R:6.4f} mm, P_dagger = {po.P_dagger * F:8.4f} N; apex "
                   f"u_z before touch = {-ps.stats.get('cavity_lift', 0.0) * R:7.4f} mm; "
@@ -72,12 +76,13 @@ def figure(mesh="default", delta_max_mm=5.0):
     ax.set_xlabel("delta [mm] (from the first touch)")
     ax.set_ylabel("P [N] (force on rim and lid, compression > 0)")
     ax.set_title(f"loading (solid), equilibrium at gamma = {GAMMA:g} J/m$^2$ (dashed), "
-                 "pull-off P* (dots)", fontsize=9)
+                 "fixed-load pull-off (dots)", fontsize=9)
     ax.legend(fontsize=8)
     bx.axhline(0, color="0.6", lw=0.5)
     bx.set_xlabel("delta [mm]")
     bx.set_ylabel("gauge pressure p [kPa] (> 0 inflates)")
-    bx.set_title("cavity pressure on loading (thick) and relaxation (thin)", fontsize=9)
+    bx.set_title("sealed cavity (air, 1 atm, isothermal): loading (thick), relaxation (thin);\n"
+                 "inflated and depressurised: p = +10 and -15 kPa throughout", fontsize=9)
     bx.legend(fontsize=8)
     fig.suptitle(f"base shell R = h = {R:g} mm, t = {T:g} mm, C10 = {C10:g} MPa, no_slip, "
                  f"mesh {mesh}", fontsize=10)
@@ -98,18 +103,43 @@ def membrane(mesh="coarse", t_over_R=0.05, delta_over_R=0.05):
               f"P / (p pi a^2) = {s.P / (p * np.pi * s.a ** 2):.4f}")
 
 
-def cost(mesh="default", delta_max_mm=5.0):
+def cost(mesh="default", delta_max_mm=2.0, repeat=1):
     """Wall time and Newton iterations of the whole base shell (loading and relaxation
-    paths, one process), each cavity run twice, the faster kept."""
+    paths, one process), the fastest of `repeat` runs; then the cost of one Newton
+    iteration (assembly + LU + solve at the same loaded state, fastest of 15)."""
     rows = {}
-    for _ in range(2):
+    for _ in range(int(repeat)):
         for name in CASES:
-            _, seconds, iters = solve(name, mesh, delta_max_mm)
-            rows[name] = (min(seconds, rows.get(name, (np.inf,))[0]), iters)
-    base = rows["open"][0]
-    for name, (seconds, iters) in rows.items():
-        print(f"{name:24s} {seconds:7.1f} s ({seconds / base:4.2f} x open), "
-              f"{iters} Newton iterations")
+            ps, seconds, iters = solve(name, mesh, delta_max_mm)
+            rows[name] = (min(seconds, rows.get(name, (np.inf,))[0]), iters,
+                          ps.stats.get("inversion_stage"))
+    base = rows["open"]
+    for name, (seconds, iters, inv) in rows.items():
+        print(f"{name:24s} {seconds:7.1f} s ({seconds / base[0]:4.2f} x open), {iters} Newton "
+              f"iterations ({iters / base[1]:4.2f} x open); inversion: {inv}")
+    iteration_cost(mesh)
+
+
+def iteration_cost(mesh="default", repeat=15):
+    from shell_adhesion.solver.contact import constraints
+    from shell_adhesion.solver.path import Settings, Timer, _Problem
+    times = {}
+    for name, cav in CASES.items():
+        d, loading = solve_loading(T / R, H / R, "no_slip", mesh, 0.02, cavity=cav)
+        s = loading.states[-1]
+        pb = _Problem(d, "no_slip", Settings(), Timer())
+        c = constraints(d, "no_slip", s.held)
+        best = np.inf
+        for _ in range(repeat):
+            t0 = time.perf_counter()
+            K, r = pb.assemble(s.x)
+            lu, _ = pb.factor(K, c)
+            pb.solve(lu, -r[c.free])
+            best = min(best, time.perf_counter() - t0)
+        times[name] = (best, d.ndof)
+    for name, (t, n) in times.items():
+        print(f"{name:24s} one Newton iteration {1e3 * t:7.1f} ms ({t / times['open'][0]:4.2f} "
+              f"x open), {n} unknowns")
 
 
 if __name__ == "__main__":
@@ -120,6 +150,8 @@ if __name__ == "__main__":
     elif what == "membrane":
         membrane(*args[:1])
     elif what == "cost":
-        cost(*(args[:1]), *(float(a) for a in args[1:2]))
+        cost(*(args[:1]), *(float(a) for a in args[1:3]))
+    elif what == "iteration":
+        iteration_cost(*args[:1])
     else:
         sys.exit(f"unknown benchmark {what!r}: figure, membrane or cost")

@@ -88,3 +88,7 @@ def test_json_of_a_sealed_cavity():
     assert touch["apex_uz_mm"] == 0.0 and touch["p_kPa"] == 0.0
     # the undeformed cavity: the inner cap of radius 17 mm below z = h (Q2 arcs: 1e-5)
     assert touch["V_mm3"] == pytest.approx(2 / 3 * 3.141592653589793 * 17 ** 3, rel=1e-5)
+    ds = res.to_dataset()
+    assert ds["loading_p"].attrs["units"] == "kPa" and ds["relaxation_V"].attrs["units"] == "mm3"
+    assert ds.attrs["cavity_mode"] == "sealed" and ds.attrs["cavity_gas_exponent"] == 1.0
+    assert float(ds["loading_p"][-1]) == pytest.approx(ld["p_kPa"][-1], rel=1e-9)

@@ -141,8 +141,19 @@ def as_dataset(result) -> xr.Dataset:
         "loading_delta_mm": ("loading_state", loading["delta"],
                           _attrs("mm", "rim displacement delta on loading without adhesion")),
     }
+    closed = inp.cavity.closed
+    if closed:      # a closed cavity's volume and gauge pressure (study.case.cavity_kPa)
+        data["loading_V"] = ("loading_state", loading["V"], _attrs(
+            "mm3", "cavity volume V (inner surface and lid) on loading"))
+        data["loading_p"] = ("loading_state", loading["p"], _attrs(
+            "kPa", "cavity gauge pressure p on loading (> 0 inflates)"))
     if adhesion:
         K = ("relaxation", "relaxation_state")
+        if closed:
+            data["relaxation_V"] = (K, _padded([r["V"] for r in relaxations]), _attrs(
+                "mm3", "cavity volume V along the relaxation at fixed contact radius"))
+            data["relaxation_p"] = (K, _padded([r["p"] for r in relaxations]), _attrs(
+                "kPa", "cavity gauge pressure p along the relaxation at fixed contact radius"))
         data["relaxation_P"] = (K, _padded([r["P"] for r in relaxations]), _attrs(
             "N", "rim force P along the relaxation at fixed contact radius"))
         data["relaxation_U"] = (K, _padded([r["U"] for r in relaxations]), _attrs(
@@ -190,6 +201,13 @@ def as_dataset(result) -> xr.Dataset:
         wall_s=prov.get("wall_s", float("nan")),
         relaxation_gamma_max_over_C10R=prov.get("relaxation_gamma_max_over_C10R",
                                                 float("nan")))
+    if closed:
+        from .case import cavity_kPa
+        attrs.update({f"cavity_{k}": v for k, v in
+                      cavity_kPa(inp.cavity, inp.C10_MPa).items() if v is not None},
+                     cavity_apex_uz_mm=prov["cavity_touch"]["apex_uz_mm"],
+                     comment=attrs["comment"] + "; P is the force on rim and lid, delta from "
+                     "the first touch of the pressurised shell")
     return xr.Dataset(data, coords=coords, attrs=attrs)
 
 

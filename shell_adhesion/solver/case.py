@@ -11,6 +11,7 @@ import time
 
 import numpy as np
 
+from .cavity import OPEN, Cavity, bind, first_touch, lifted
 from .energy import EnergySurface, energy_surface, equilibrium, pull_off
 from .forms import Discretisation, discretise
 from .contact import check_interface
@@ -97,6 +98,13 @@ class Relaxation:
     J_max: float = 1.0
     detF_min: float = 1.0
     timing: dict = field(default_factory=dict, compare=False)  # the path's Timer (not stored)
+    V: np.ndarray = None    # cavity: enclosed volume / R^3 along the path (NaN if open)
+    p: np.ndarray = None    # cavity: gauge pressure / C10 along the path (NaN if open)
+
+    def __post_init__(self):
+        for name in ("V", "p"):
+            if getattr(self, name) is None:
+                object.__setattr__(self, name, np.full(len(self.delta), np.nan))
 
     @property
     def usable(self) -> bool:
@@ -113,7 +121,8 @@ class Relaxation:
                    path.array("dP_ddelta"), path.ended_by, path.penetration,
                    path.centre_lifts or start_off, path.timer.newton_iterations,
                    relaxation_views(d, path) if d is not None else (),
-                   float(inversion), q.J_min, q.J_max, q.detF_min, path.timer.as_dict())
+                   float(inversion), q.J_min, q.J_max, q.detF_min, path.timer.as_dict(),
+                   path.array("V"), path.array("p"))
 
 
 def loading_views(d: Discretisation, loading: LoadingPath) -> tuple:
@@ -151,6 +160,14 @@ class PathSet:
     relaxations: tuple
     stats: dict = field(default_factory=dict)
     views: tuple = ()               # Profile and StressMap states kept for figures
+    loading_V: np.ndarray = None    # cavity: enclosed volume / R^3 (NaN if open)
+    loading_p: np.ndarray = None    # cavity: gauge pressure / C10 (NaN if open)
+    cavity: Cavity = OPEN           # what fills the cavity (solver.cavity)
+
+    def __post_init__(self):
+        for name in ("loading_V", "loading_p"):
+            if getattr(self, name) is None:
+                object.__setattr__(self, name, np.full(len(self.loading_delta), np.nan))
 
     def surface(self) -> EnergySurface:
         return energy_surface([(r.a, r.delta, r.P, r.U) for r in self.usable()])
@@ -200,33 +217,50 @@ class PathSet:
 
 
 def solve_loading(t: float, h: float, interface: str, mesh: str, delta_max: float,
-                  settings: Settings = Settings(), progress=None, material: Material = NEO_HOOKE):
+                  settings: Settings = Settings(), progress=None, material: Material = NEO_HOOKE,
+                  cavity: Cavity = OPEN):
     """Discretisation and loading path of one dimensionless shell; a shell or delta_max
-    outside the supported domain (solver.geometry) raises InputError (a ValueError)."""
+    outside the supported domain (solver.geometry) raises InputError (a ValueError).
+
+    A closed `cavity` (solver.cavity) is pressurised first with the shell free; delta is
+    then measured from the first touch of the pressurised shell, whose apex displacement
+    is `cavity_lift(d)` (CavitySnap if the free shell snaps before).
+    """
     cap = Cap(t, h)
     check_delta_max(delta_max, h)
     check_interface(interface)
     cm = cap_mesh(cap, mesh_spec(mesh))
     d = discretise(cm, material=material)
-    return d, load(d, interface, delta_max, settings, progress)
+    if not cavity.closed:
+        return d, load(d, interface, delta_max, settings, progress)
+    d, x0, _ = first_touch(bind(d, cavity), settings)
+    return d, load(d, interface, delta_max, settings, progress, x0=x0)
+
+
+def cavity_lift(d: Discretisation) -> float:
+    """The height / R by which the mesh of `d` is lifted so that the pressurised free shell
+    touches at delta = 0: minus its apex displacement u_z (> 0: the apex bulged toward the
+    plane, < 0: it was drawn up).  0 if open."""
+    return float(d.capmesh.nodes[1, d.capmesh.outer[0]])
 
 
 def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "default",
                 delta_max: float = 0.25, gamma_max: float = GAMMA_MAX,
                 settings: Settings = Settings(), relax_paths: bool = True,
                 progress=None, map=None, path_progress=None,
-                material: Material = NEO_HOOKE) -> tuple:
+                material: Material = NEO_HOOKE, cavity: Cavity = OPEN) -> tuple:
     """Loading and relaxation paths of one shell: (PathSet, Discretisation, LoadingPath).
 
     `progress(delta)` is called after each loading state, `path_progress(done, total)`
     after each relaxation path; `map` (e.g. an executor's map) runs the independent
     relaxation paths in parallel.  `material` (solver.material.Material, ratios to C10)
-    is the solid; neo-Hooke by default.
+    is the solid; neo-Hooke by default; `cavity` (solver.cavity) what fills the cavity.
     """
     if not (isinstance(gamma_max, (int, float)) and math.isfinite(gamma_max) and gamma_max > 0):
         raise InputError(f"gamma_max: {gamma_max!r} must be a finite number > 0 (gamma/(C10 R))")
     t0 = time.perf_counter()
-    d, loading = solve_loading(t, h, interface, mesh, delta_max, settings, progress, material)
+    d, loading = solve_loading(t, h, interface, mesh, delta_max, settings, progress, material,
+                               cavity)
     t1 = time.perf_counter()
     relaxations = ()
     if relax_paths:
@@ -243,7 +277,8 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
             n = len(starts)
             relaxations = tuple(map(relaxation_task, [t] * n, [h] * n, [interface] * n,
                                     [mesh] * n, starts, [gamma_max] * n, [settings] * n,
-                                    [i == n - 1 for i in range(n)], [material] * n))
+                                    [i == n - 1 for i in range(n)], [material] * n,
+                                    [cavity] * n, [cavity_lift(d)] * n))
     t2 = time.perf_counter()
     stats = dict(dofs=int(d.ndof), elements=int(d.capmesh.mesh.nelements),
                  loading_states=len(loading.states),
@@ -254,7 +289,7 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
                  loading_s=t1 - t0, relaxation_s=t2 - t1,
                  timing=timing_stats(loading.timer, relaxations))
     return pathset_of(t, h, interface, mesh, delta_max, gamma_max, loading, relaxations,
-                      stats, loading_views(d, loading)), d, loading
+                      stats, loading_views(d, loading), cavity, cavity_lift(d)), d, loading
 
 
 def timing_stats(loading_timer, relaxations) -> dict:
@@ -277,20 +312,26 @@ def timing_stats(loading_timer, relaxations) -> dict:
 
 
 def pathset_of(t, h, interface, mesh, delta_max, gamma_max, loading, relaxations, stats,
-               views=()):
+               views=(), cavity: Cavity = OPEN, lift: float = 0.0):
     """The PathSet of a loading path, its Relaxations and the loading views; the
     relaxations' views move to the set's (profiles, then stress maps, each in stage order).
     The set's stats gain the element quality and the contact-zone inversion
-    (`provenance_stats`)."""
+    (`provenance_stats`), and a closed cavity's `cavity_lift` (lift: the apex displacement /
+    R of the free pressurised shell, downward > 0) and touch state."""
     views = tuple(views) + tuple(v for r in relaxations for v in r.views)
     views = tuple(sorted(views, key=lambda v: isinstance(v, StressMap)))  # profiles first
     # each path's timing lives on in the set's stats (timing_stats), not in the set
     relaxations = tuple(replace(r, views=(), timing={}) if r.views or r.timing else r
                         for r in relaxations)
     stats = {**provenance_stats(loading, relaxations), **stats}
+    if cavity.closed:
+        s0 = loading.states[0]
+        stats.update(cavity_lift=float(lift), cavity_V_touch=float(s0.V),
+                     cavity_p_touch=float(s0.p), cavity_U_touch=float(s0.U))
     return PathSet(t, h, interface, mesh, delta_max, gamma_max,
                    loading.array("delta"), loading.array("P"), loading.array("a"),
-                   loading.array("U"), loading.array("joined"), relaxations, stats, views)
+                   loading.array("U"), loading.array("joined"), relaxations, stats, views,
+                   loading.array("V"), loading.array("p"), cavity)
 
 
 def G_reached(relaxations):
@@ -341,9 +382,13 @@ def provenance_stats(loading: LoadingPath, relaxations) -> dict:
 
 def relaxation_task(t: float, h: float, interface: str, mesh: str, start: State,
                     gamma_max: float = GAMMA_MAX, settings: Settings = Settings(),
-                    views: bool = False, material: Material = NEO_HOOKE) -> Relaxation:
+                    views: bool = False, material: Material = NEO_HOOKE,
+                    cavity: Cavity = OPEN, lift: float = 0.0) -> Relaxation:
     """One relaxation path as an independent task (rebuilds the discretisation); with
-    `views`, it keeps the path's profiles and stress map."""
+    `views`, it keeps the path's profiles and stress map.  A closed `cavity` needs the
+    loading's `lift` (`cavity_lift`)."""
     d = discretise(cap_mesh(Cap(t, h), mesh_spec(mesh)), material=material)
+    if cavity.closed:
+        d = lifted(bind(d, cavity), lift)
     return Relaxation.of(relax_from(d, interface, start, gamma_max, settings),
                          d if views else None)

@@ -36,6 +36,7 @@ class Discretisation:
     csr_indices: np.ndarray
     csr_slot: np.ndarray # (E * 22 * 22,) position of each element entry in the CSR data
     material: Material = NEO_HOOKE
+    cavity: object = None  # solver.cavity.CavityLoad of a closed cavity (cavity.bind), else None
 
     @property
     def force_scale(self) -> float:
@@ -44,7 +45,7 @@ class Discretisation:
 
     @property
     def ndof(self) -> int:
-        return 2 * self.n2 + self.n1
+        return 2 * self.n2 + self.n1 + (self.cavity.extra_dofs if self.cavity else 0)
 
     @cached_property
     def B_eq(self) -> np.ndarray:
@@ -140,7 +141,15 @@ def residual(d: Discretisation, x):
     """Internal force vector dL/dx (units of C10 R^2; pressure rows: volume / R^3)."""
     f, p = _fields(d, x)
     dL, _, _, _, dLdp, _ = lagrangian_derivatives(_checked(d, f), p, d.material)
-    return _scatter_vector(d, np.einsum("iaeq,ieq->ae", d.B, dL * d.w), dLdp * d.w)
+    r = _scatter_vector(d, np.einsum("iaeq,ieq->ae", d.B, dL * d.w), dLdp * d.w)
+    return r if d.cavity is None else d.cavity.add_residual(x, r)   # solver.cavity
+
+
+def potential_energy(d: Discretisation, x) -> float:
+    """Strain energy plus the energy of the cavity's pressure load (solver.cavity), units
+    of C10 R^3: the U_E of Maugis' method."""
+    U = strain_energy(d, x)
+    return U if d.cavity is None else U + d.cavity.energy(x)
 
 
 def _scatter_vector(d, ru, jw):
@@ -168,5 +177,6 @@ def tangent(d: Discretisation, x):
     if d2Ldp2:
         Ke[:, 18:, 18:] = d2Ldp2 * np.einsum("beq,ceq,eq->ebc", d.Np, d.Np, w)
     data = np.bincount(d.csr_slot, weights=Ke.ravel(), minlength=len(d.csr_indices))
-    K = sp.csr_matrix((data, d.csr_indices, d.csr_indptr), shape=(d.ndof, d.ndof))
-    return K, r
+    n = len(d.csr_indptr) - 1
+    K = sp.csr_matrix((data, d.csr_indices, d.csr_indptr), shape=(n, n))
+    return (K, r) if d.cavity is None else d.cavity.add_tangent(K, r, x)   # solver.cavity

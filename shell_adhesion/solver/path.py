@@ -16,7 +16,7 @@ import numpy as np
 
 from .contact import (Constraints, constraints, contact_reactions, deformed_radius, gaps,
                       rim_load)
-from .forms import Discretisation, strain_energy, tangent
+from .forms import Discretisation, potential_energy, tangent
 from .linear import LinearSolver, SingularTangent, Timer
 from .quality import Quality, quality, worst
 
@@ -64,6 +64,8 @@ class State:
     dP_ddelta_left: float = np.nan  # dP/ddelta before the joining node was held
     quality: Quality = None   # element quality of the state (solver.quality)
     centre_off: bool = False  # the centre of the contact zone has left (or is pulled off) the plane
+    V: float = np.nan         # cavity: enclosed volume / R^3 (solver.cavity; NaN if open)
+    p: float = np.nan         # cavity: gauge pressure / C10
 
 
 @dataclass(frozen=True, eq=False)
@@ -233,15 +235,18 @@ class _Problem:
                 f"mesh of t/R = {cm.cap.t:g}, h/R = {cm.cap.h:g}; try a finer mesh or a "
                 f"smaller delta_max")
         a = float(deformed_radius(d, x, max(held))) if len(held) else 0.0
-        return State(delta, rim_load(d, r), strain_energy(d, x), a, tuple(held), joined,
-                     x.copy(), dP, history, quality=q, centre_off=centre_off)
+        V, p = (np.nan, np.nan) if d.cavity is None else d.cavity.measure(x)  # solver.cavity
+        return State(delta, rim_load(d, r), potential_energy(d, x), a, tuple(held), joined,
+                     x.copy(), dP, history, quality=q, centre_off=centre_off, V=V, p=p)
 
 
 def load(d: Discretisation, interface: str, delta_max: float,
-         settings: Settings = Settings(), progress=None) -> LoadingPath:
+         settings: Settings = Settings(), progress=None, x0=None) -> LoadingPath:
     """Push the rim down from delta = 0 to delta_max, locating every contact event.
 
-    `progress(delta)` is called after each converged state if given.
+    `progress(delta)` is called after each converged state if given.  `x0`: the state at
+    delta = 0 touching the plane at the apex (a pressurised cavity, solver.cavity), else
+    the undeformed shell.
     """
     if not (math.isfinite(delta_max) and delta_max > 0):
         raise ValueError(f"delta_max: {delta_max!r} must be a finite number > 0 (units of R)")
@@ -250,7 +255,7 @@ def load(d: Discretisation, interface: str, delta_max: float,
     n_outer = len(d.capmesh.outer)
     max_events = settings.max_events_per_node * n_outer
     held = [0]
-    x = np.zeros(d.ndof)
+    x = np.zeros(d.ndof) if x0 is None else np.array(x0, dtype=float)
     delta = 0.0
     c = constraints(d, interface, held)
     K, r = pb.assemble(x)

@@ -16,6 +16,7 @@ import numpy as np
 import xarray as xr
 
 from .case import PathSet, Relaxation
+from .cavity import Cavity
 from .postprocess import Profile, StressMap
 
 LAYOUT = 2          # version of this layout (part of the catalogue key of a path set)
@@ -28,6 +29,10 @@ _LONG_NAMES = {
     "loading_a": "contact radius a / R",
     "loading_U": "strain energy U / (C10 R^3)",
     "loading_joined": "outer node joining the contact in this state (-1: none)",
+    "loading_V": "cavity volume V / R^3 (NaN: open)",
+    "loading_p": "cavity gauge pressure p / C10 (NaN: open)",
+    "relaxation_V": "cavity volume V / R^3 (NaN: open)",
+    "relaxation_p": "cavity gauge pressure p / C10 (NaN: open)",
     "relaxation_a": "held contact radius a / R of the path",
     "relaxation_delta": "rim displacement delta / R",
     "relaxation_P": "rim force P / (C10 R^2)",
@@ -112,6 +117,8 @@ def _relaxations_of(ds: xr.Dataset, views=()) -> tuple:
     for k, (s, e) in enumerate(zip(starts, ends)):
         kw = {}
         for f in _stored(Relaxation):
+            if f"relaxation_{f.name}" not in ds and f.name in _CAVITY_FIELDS:
+                continue     # stored before the cavity existed: an open shell
             v = ds[f"relaxation_{f.name}"].values
             if _is_array(f):
                 kw[f.name] = v[s:e]
@@ -120,6 +127,9 @@ def _relaxations_of(ds: xr.Dataset, views=()) -> tuple:
                 kw[f.name] = kind(v[k])
         rel.append(Relaxation(views=views, **kw))
     return tuple(rel)
+
+
+_CAVITY_FIELDS = ("V", "p", "loading_V", "loading_p")
 
 
 def _json_stats(stats) -> str:
@@ -137,6 +147,7 @@ def to_dataset(ps: PathSet) -> xr.Dataset:
     attrs = dict(
         title=_TITLE + " (dimensionless: lengths / R, forces / (C10 R^2), energies / (C10 R^3))",
         Conventions="CF-1.8", layout=LAYOUT, stats=_json_stats(ps.stats),
+        cavity=json.dumps(ps.cavity.as_dict(), sort_keys=True),
         **{a: getattr(ps, f) for f, a in _ATTRS.items()})
     return xr.Dataset(data, attrs=attrs)
 
@@ -150,8 +161,10 @@ def from_dataset(ds: xr.Dataset) -> PathSet:
     kw = {f: ds.attrs[a] for f, a in _ATTRS.items()}
     kw = {f: (str(v) if f in ("interface", "mesh") else float(v)) for f, v in kw.items()}
     for f in fields(PathSet):
-        if _is_array(f):
+        if _is_array(f) and (f.name in ds or f.name not in _CAVITY_FIELDS):
             kw[f.name] = ds[f.name].values
+    if "cavity" in ds.attrs:
+        kw["cavity"] = Cavity(**json.loads(ds.attrs["cavity"]))
     return PathSet(relaxations=_relaxations_of(ds), stats=json.loads(ds.attrs["stats"]),
                    views=_views_of(ds), **kw)
 

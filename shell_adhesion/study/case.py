@@ -15,6 +15,8 @@ import time
 
 from shell_adhesion.solver import __version__
 from shell_adhesion.solver.case import PathSet, solve_paths
+from shell_adhesion.solver.cavity import MODES as CAVITY_MODES, OPEN, P_ATM_KPA, Cavity, \
+    CavitySnap, check_cavity
 from shell_adhesion.solver.geometry import GAMMA_MAX, check_gamma
 from shell_adhesion.solver.contact import INTERFACES
 from shell_adhesion.solver.geometry import InputError, check_cap, check_delta_max
@@ -31,7 +33,9 @@ GAMMA_HEADROOM = 1.25   # the paths serve up to 1.25 x the largest gamma asked f
 API_NAMES = dict(R_mm="R_mm", t_mm="t_mm", h_mm="h_mm", C10_MPa="C10_MPa",
                  gamma_J_m2="gamma_J_m2", delta_max_mm="delta_max_mm",
                  interface="interface", mesh="mesh", material="material", C01_MPa="C01_MPa",
-                 C20_MPa="C20_MPa", C30_MPa="C30_MPa", Jm="Jm", D1_per_MPa="D1_per_MPa")
+                 C20_MPa="C20_MPa", C30_MPa="C30_MPa", Jm="Jm", D1_per_MPa="D1_per_MPa",
+                 cavity="cavity", p_kPa="p_kPa", p0_kPa="p0_kPa", p_atm_kPa="p_atm_kPa",
+                 gas_exponent="gas_exponent")
 # the material models by the solver's names and by the spellings users know
 MODEL_NAMES = {**{m: m for m in MODELS}, "neo-hookean": "neo_hooke", "neo_hookean": "neo_hooke",
                "neo-hooke": "neo_hooke", "mooney-rivlin": "mooney_rivlin"}
@@ -85,21 +89,73 @@ class CaseInput:
     interface: str = "no_slip"
     mesh: str = "default"
     material: Material = NEO_HOOKE
+    cavity: Cavity = OPEN      # pressures / C10 (`cavity_kPa` gives them in kPa)
 
     def as_dict(self) -> dict:
-        return dict(R_mm=self.R_mm, t_mm=self.t_mm, h_mm=self.h_mm, C10_MPa=self.C10_MPa,
-                    delta_max_mm=self.delta_max_mm, gamma_J_m2=list(self.gamma_J_m2),
-                    interface=self.interface, mesh=self.mesh)
+        out = dict(R_mm=self.R_mm, t_mm=self.t_mm, h_mm=self.h_mm, C10_MPa=self.C10_MPa,
+                   delta_max_mm=self.delta_max_mm, gamma_J_m2=list(self.gamma_J_m2),
+                   interface=self.interface, mesh=self.mesh)
+        if self.cavity.closed:
+            out["cavity"] = cavity_kPa(self.cavity, self.C10_MPa)
+        return out
+
+
+def cavity_kPa(cavity: Cavity, C10_MPa: float) -> dict:
+    """The cavity as plain data in the user's units: mode, p_kPa (prescribed gauge), p0_kPa
+    (sealing gauge), p_atm_kPa, gas_exponent; None where the mode has no such parameter."""
+    kPa = lambda v: float(v * C10_MPa * 1e3)
+    out = dict(mode=cavity.mode, p_kPa=None, p0_kPa=None, p_atm_kPa=None, gas_exponent=None)
+    if cavity.mode == "pressure":
+        out.update(p_kPa=kPa(cavity.p), p_atm_kPa=kPa(cavity.p_atm))
+    elif cavity.sealed:
+        out.update(p0_kPa=kPa(cavity.p0), p_atm_kPa=kPa(cavity.p_atm), gas_exponent=cavity.n)
+    return out
+
+
+def cavity_of(mode, C10_MPa, p_kPa=None, p0_kPa=None, p_atm_kPa=None, gas_exponent=None,
+              names=None) -> Cavity:
+    """The checked Cavity (pressures / C10) of a mode and pressures in kPa; a parameter the
+    mode does not use is refused if given (not None).  InputError names the field as `names`
+    calls it (default API_NAMES)."""
+    n = dict(API_NAMES, **(names or {}))
+    mode = "open" if mode is None else mode
+    if mode not in CAVITY_MODES:
+        raise InputError(f"{n['cavity']}: {mode!r} must be one of {', '.join(CAVITY_MODES)}")
+    uses = dict(p_kPa=("pressure",), p0_kPa=("sealed",), gas_exponent=("sealed",),
+                p_atm_kPa=("pressure", "sealed"))
+    given = dict(p_kPa=p_kPa, p0_kPa=p0_kPa, p_atm_kPa=p_atm_kPa, gas_exponent=gas_exponent)
+    for key, value in given.items():
+        if value is not None and mode not in uses[key]:
+            raise InputError(f"{n[key]}: given without {n['cavity']} "
+                             f"{' or '.join(uses[key])} ({n['cavity']} is {mode})")
+    if mode == "pressure" and p_kPa is None:
+        raise InputError(f"{n['cavity']}: pressure needs {n['p_kPa']} (the gauge pressure, kPa)")
+    units = dict(p_kPa="kPa", p0_kPa="kPa", p_atm_kPa="kPa", gas_exponent="1")
+    v = {k: (check_finite(x, n[k], units[k]) if x is not None else None)
+         for k, x in given.items()}
+    p = v["p_kPa"] or 0.0
+    p0 = v["p0_kPa"] or 0.0
+    p_atm = P_ATM_KPA if v["p_atm_kPa"] is None else v["p_atm_kPa"]
+    gas = 1.0 if v["gas_exponent"] is None else v["gas_exponent"]
+    if mode == "open":
+        return OPEN
+    check_cavity(mode, p, p0, p_atm, gas, names=dict(mode=n["cavity"], p=n["p_kPa"],
+                 p0=n["p0_kPa"], p_atm=n["p_atm_kPa"], n=n["gas_exponent"]))
+    to_C10 = 1e-3 / C10_MPa
+    return Cavity(mode, p * to_C10, p0 * to_C10, p_atm * to_C10, gas)
 
 
 def case_input(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2=(), delta_max_mm=None,
                interface="no_slip", mesh="default", names=None, *, material="neo_hooke",
-               C01_MPa=0.0, C20_MPa=0.0, C30_MPa=0.0, Jm=None, D1_per_MPa=0.0) -> CaseInput:
+               C01_MPa=0.0, C20_MPa=0.0, C30_MPa=0.0, Jm=None, D1_per_MPa=0.0,
+               cavity="open", p_kPa=None, p0_kPa=None, p_atm_kPa=None,
+               gas_exponent=None) -> CaseInput:
     """Check the input of one shell; InputError names the field (as `names` calls it).
 
     `names` maps each argument to the caller's name for it (default API_NAMES; the
     command line gives its flags).  delta_max_mm defaults to R/4.  The material is
-    checked by `material_of` (model name, coefficients, Drucker stability).
+    checked by `material_of` (model name, coefficients, Drucker stability), the cavity
+    by `cavity_of`.
     """
     n = dict(API_NAMES, **(names or {}))
     R = check_finite(R_mm, n["R_mm"], "mm")
@@ -114,6 +170,10 @@ def case_input(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2=(), delta_max_mm=None,
     check_R(R, n["R_mm"])
     check_C10(C10, n["C10_MPa"])
     solid = material_of(material, C10, C01_MPa, C20_MPa, C30_MPa, Jm, D1_per_MPa, n)
+    filled = cavity_of(cavity, C10, p_kPa, p0_kPa, p_atm_kPa, gas_exponent, n)
+    if filled.closed and t >= R:
+        raise InputError(f"{n['cavity']}: {cavity} needs a shell (t < R); a solid cap "
+                         f"({n['t_mm']} = {t:g} mm = R) has no cavity")
     check_cap(t / R, h / R, _ratio(n["t_mm"], "t", t, R), _ratio(n["h_mm"], "h", h, R))
     check_delta_max(delta_max / R, h / R, _ratio(n["delta_max_mm"], "delta_max", delta_max, R),
                     n["h_mm"])
@@ -124,7 +184,7 @@ def case_input(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2=(), delta_max_mm=None,
         raise InputError(f"{n['interface']}: {interface!r} must be one of {', '.join(INTERFACES)}")
     if mesh not in MESHES:
         raise InputError(f"{n['mesh']}: {mesh!r} must be one of {', '.join(MESHES)}")
-    return CaseInput(R, t, h, C10, delta_max, gammas, interface, mesh, solid)
+    return CaseInput(R, t, h, C10, delta_max, gammas, interface, mesh, solid, filled)
 
 
 def _ratio(name, symbol, value_mm, R_mm):
@@ -173,7 +233,8 @@ class CaseResult:
 
 def solve_case(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2=(), *, delta_max_mm=None,
                interface="no_slip", mesh="default", material="neo_hooke", C01_MPa=0.0,
-               C20_MPa=0.0, C30_MPa=0.0, Jm=None, D1_per_MPa=0.0,
+               C20_MPa=0.0, C30_MPa=0.0, Jm=None, D1_per_MPa=0.0, cavity="open",
+               p_kPa=None, p0_kPa=None, p_atm_kPa=None, gas_exponent=None,
                progress=True) -> CaseResult:
     """Solve one spherical-cap shell pressed on a rigid plane, and its pull-off.
 
@@ -208,6 +269,19 @@ def solve_case(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2=(), *, delta_max_mm=None,
     D1_per_MPa : float
         Compressibility D1 [1/MPa], U = (J - 1)^2 / D1, any model; 0 (default) is
         incompressible.
+    cavity : {"open", "pressure", "sealed"}
+        What closes the shell (a rigid lid on the rim): nothing (default), a prescribed
+        gauge pressure, or trapped gas.  P is then the force on rim and lid together.
+    p_kPa : float
+        Prescribed gauge pressure [kPa] (cavity "pressure" only, required there); > 0
+        inflates.  delta is measured from the first touch of the pressurised shell.
+    p0_kPa : float
+        Gauge pressure of the trapped gas in the undeformed shell [kPa] (sealed; default 0).
+    p_atm_kPa : float
+        Ambient pressure [kPa] (closed cavities; default 101.325); absolute pressures must
+        stay >= 0.
+    gas_exponent : float
+        Polytropic exponent n of p V^n = const (sealed; >= 1, default 1 isothermal).
     progress : bool
         Show a progress bar on stderr (when it is a terminal).
 
@@ -226,7 +300,8 @@ def solve_case(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2=(), *, delta_max_mm=None,
     """
     inp = case_input(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2, delta_max_mm, interface, mesh,
                      material=material, C01_MPa=C01_MPa, C20_MPa=C20_MPa, C30_MPa=C30_MPa,
-                     Jm=Jm, D1_per_MPa=D1_per_MPa)
+                     Jm=Jm, D1_per_MPa=D1_per_MPa, cavity=cavity, p_kPa=p_kPa, p0_kPa=p0_kPa,
+                     p_atm_kPa=p_atm_kPa, gas_exponent=gas_exponent)
     return _solve(inp, progress)
 
 
@@ -248,10 +323,17 @@ def _solve(inp: CaseInput, progress: bool) -> CaseResult:
                 bar.unit = "path"
                 bar.reset(total)
             bar.update(1)
-        ps, d, loading = solve_paths(inp.t_mm / R, inp.h_mm / R, inp.interface, inp.mesh,
-                                     inp.delta_max_mm / R, gamma_max, relax_paths=bool(g_hats),
-                                     progress=on_state, path_progress=on_path,
-                                     material=inp.material)
+        try:
+            ps, d, loading = solve_paths(inp.t_mm / R, inp.h_mm / R, inp.interface, inp.mesh,
+                                         inp.delta_max_mm / R, gamma_max,
+                                         relax_paths=bool(g_hats), progress=on_state,
+                                         path_progress=on_path, material=inp.material,
+                                         cavity=inp.cavity)
+        except CavitySnap as err:
+            kPa = C10 * 1e3
+            raise InputError(f"cavity pressure: {err.p_target * kPa:g} kPa makes the free shell snap "
+                             f"(limit point) before contact; it holds "
+                             f"{err.p_reached * kPa:.4g} kPa") from None
     t1 = t0 + ps.stats["loading_s"]
     t2 = t1 + ps.stats["relaxation_s"]
     adhesion = ()
@@ -273,8 +355,22 @@ def _solve(inp: CaseInput, progress: bool) -> CaseResult:
         "tolerances": {"newton_rtol": settings.tol, "newton_atol": settings.atol,
                        "gap_tol_over_R": settings.gap_tol},
         "relaxation_gamma_max_over_C10R": gamma_max,
-        **checks_dict(ps.stats, R, C10)}
+        **checks_dict(ps.stats, R, C10), **cavity_dict(ps.stats, R, C10)}
     return CaseResult(inp, ps, adhesion, provenance)
+
+
+def cavity_dict(stats: dict, R_mm: float, C10_MPa: float) -> dict:
+    """A closed cavity's state at the first touch: the apex displacement of the free
+    pressurised shell before contact (mm, z up: < 0 it bulged toward the plane), the volume
+    (mm^3), the gauge pressure (kPa) and U_E there (mJ, strain minus pressure work); {} if
+    open."""
+    if "cavity_lift" not in stats:
+        return {}
+    return {"cavity_touch": {
+        "apex_uz_mm": -stats["cavity_lift"] * R_mm,
+        "V_mm3": stats["cavity_V_touch"] * R_mm ** 3,
+        "p_kPa": stats["cavity_p_touch"] * C10_MPa * 1e3,
+        "U_E_mJ": stats["cavity_U_touch"] * C10_MPa * R_mm ** 3}}
 
 
 def checks_dict(stats: dict, R_mm: float, C10_MPa: float) -> dict:

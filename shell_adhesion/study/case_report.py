@@ -28,9 +28,12 @@ def _values(result):
     L = lambda x: length_mm(np.asarray(x, dtype=float), R)
     F = lambda x: force_N(np.asarray(x, dtype=float), C10, R)
     E = lambda x: energy_mJ(np.asarray(x, dtype=float), C10, R)
+    V = lambda x: np.asarray(x, dtype=float) * R ** 3
+    kPa = lambda x: np.asarray(x, dtype=float) * C10 * 1e3
     loading = dict(delta=L(ps.loading_delta), P=F(ps.loading_P), a=L(ps.loading_a),
-                   U=E(ps.loading_U))
+                   U=E(ps.loading_U), V=V(ps.loading_V), p=kPa(ps.loading_p))
     relaxations = [dict(a=float(L(r.a)), delta=L(r.delta), P=F(r.P), U=E(r.U),
+                        V=V(r.V), p=kPa(r.p),
                         ended_by=r.ended_by, centre_lifts=bool(r.centre_lifts),
                         penetration=bool(r.penetration), usable=r.usable)
                    for r in ps.relaxations] if result.adhesion else []
@@ -70,12 +73,17 @@ def as_dict(result) -> dict:
            "material": material_MPa(result.input.material, result.input.C10_MPa),
            "loading": {"delta_mm": _list(loading["delta"]), "P_N": _list(loading["P"]),
                        "a_mm": _list(loading["a"]), "U_E_mJ": _list(loading["U"])}}
+    closed = result.input.cavity.closed
+    if closed:   # the enclosed volume and the gauge pressure of a closed cavity
+        out["loading"].update(V_mm3=_list(loading["V"]), p_kPa=_list(loading["p"]))
     if adhesion:
         out["relaxation"] = [
             {"a_mm": _num(r["a"]), "delta1_mm": _num(r["delta"][0]), "P1_N": _num(r["P"][0]),
              "delta_mm": _list(r["delta"]), "P_N": _list(r["P"]), "U_E_mJ": _list(r["U"]),
              "ended_by": r["ended_by"], "centre_lifts": r["centre_lifts"],
-             "penetration": r["penetration"]} for r in relaxations]
+             "penetration": r["penetration"],
+             **({"V_mm3": _list(r["V"]), "p_kPa": _list(r["p"])} if closed else {})}
+            for r in relaxations]
         out["equilibrium"] = [
             {"gamma_J_m2": g, "a_mm": _list(c["a"]), "P_N": _list(c["P"]),
              "delta_mm": _list(c["delta"]),
@@ -133,8 +141,19 @@ def as_dataset(result) -> xr.Dataset:
         "loading_delta_mm": ("loading_state", loading["delta"],
                           _attrs("mm", "rim displacement delta on loading without adhesion")),
     }
+    closed = inp.cavity.closed
+    if closed:      # a closed cavity's volume and gauge pressure (study.case.cavity_kPa)
+        data["loading_V"] = ("loading_state", loading["V"], _attrs(
+            "mm3", "cavity volume V (inner surface and lid) on loading"))
+        data["loading_p"] = ("loading_state", loading["p"], _attrs(
+            "kPa", "cavity gauge pressure p on loading (> 0 inflates)"))
     if adhesion:
         K = ("relaxation", "relaxation_state")
+        if closed:
+            data["relaxation_V"] = (K, _padded([r["V"] for r in relaxations]), _attrs(
+                "mm3", "cavity volume V along the relaxation at fixed contact radius"))
+            data["relaxation_p"] = (K, _padded([r["p"] for r in relaxations]), _attrs(
+                "kPa", "cavity gauge pressure p along the relaxation at fixed contact radius"))
         data["relaxation_P"] = (K, _padded([r["P"] for r in relaxations]), _attrs(
             "N", "rim force P along the relaxation at fixed contact radius"))
         data["relaxation_U"] = (K, _padded([r["U"] for r in relaxations]), _attrs(
@@ -182,6 +201,13 @@ def as_dataset(result) -> xr.Dataset:
         wall_s=prov.get("wall_s", float("nan")),
         relaxation_gamma_max_over_C10R=prov.get("relaxation_gamma_max_over_C10R",
                                                 float("nan")))
+    if closed:
+        from .case import cavity_kPa
+        attrs.update({f"cavity_{k}": v for k, v in
+                      cavity_kPa(inp.cavity, inp.C10_MPa).items() if v is not None},
+                     cavity_apex_uz_mm=prov["cavity_touch"]["apex_uz_mm"],
+                     comment=attrs["comment"] + "; P is the force on rim and lid, delta from "
+                     "the first touch of the pressurised shell")
     return xr.Dataset(data, coords=coords, attrs=attrs)
 
 

@@ -32,7 +32,10 @@ HARD_EXIT_S = 45.0      # a run still ending this long after Ctrl-C is ended at 
 CASE_FLAGS = dict(R_mm="--R", t_mm="--t", h_mm="--h", C10_MPa="--C10",
                   gamma_J_m2="--gamma", delta_max_mm="--delta-max", interface="--interface",
                   mesh="--mesh", material="--material", C01_MPa="--C01", C20_MPa="--C20",
-                  C30_MPa="--C30", Jm="--Jm", D1_per_MPa="--D1")
+                  C30_MPa="--C30", Jm="--Jm", D1_per_MPa="--D1", cavity="--cavity",
+                  p_kPa="--p-kPa", p0_kPa="--p0-kPa", p_atm_kPa="--p-atm-kPa",
+                  gas_exponent="--gas-exponent")
+CAVITY_FLAGS = (("p_kPa", "kPa"), ("p0_kPa", "kPa"), ("p_atm_kPa", "kPa"), ("gas_exponent", "1"))
 MATERIAL_FLAGS = (("C01", "C01_MPa", "MPa"), ("C20", "C20_MPa", "MPa"), ("C30", "C30_MPa", "MPa"),
                   ("Jm", "Jm", "1"), ("D1", "D1_per_MPa", "1/MPa"))
 
@@ -64,6 +67,9 @@ def _number(flag, text, unit):
 def _run_case(ns):
     solid = {arg: _number(f"--{flag}", getattr(ns, flag), unit)
              for flag, arg, unit in MATERIAL_FLAGS if getattr(ns, flag) is not None}
+    solid.update({arg: _number(CASE_FLAGS[arg], getattr(ns, arg), unit)
+                  for arg, unit in CAVITY_FLAGS if getattr(ns, arg) is not None},
+                 cavity=ns.cavity)
     inp = case_api.case_input(_number("--R", ns.R, "mm"), _number("--t", ns.t, "mm"),
                      _number("--h", ns.h, "mm"), _number("--C10", ns.C10, "MPa"),
                      [_number("--gamma", g, "J/m^2") for g in ns.gamma or []],
@@ -87,10 +93,18 @@ def _print_case(out):
     inp, ld = out["input"], out["loading"]
     print(f"shell R = {inp['R_mm']:g} mm, t = {inp['t_mm']:g} mm, h = {inp['h_mm']:g} mm, "
           f"{_material_text(out['material'])}, interface {inp['interface']}, mesh {inp['mesh']}")
-    print(f"{'delta [mm]':>12} {'P [N]':>12} {'a [mm]':>10}")
+    cav = inp.get("cavity")
+    if cav:
+        touch = out["provenance"]["cavity_touch"]
+        given = ", ".join(f"{k} = {v:g}" for k, v in cav.items() if k != "mode" and v is not None)
+        print(f"cavity {cav['mode']} ({given}); P is the force on rim and lid; delta from the "
+              f"first touch, where the apex had moved u_z = {touch['apex_uz_mm']:.4f} mm")
+    print(f"{'delta [mm]':>12} {'P [N]':>12} {'a [mm]':>10}"
+          + (f" {'V [mm^3]':>12} {'p [kPa]':>10}" if cav else ""))
     n = len(ld["delta_mm"])
     for i in sorted(set(list(range(0, n, max(1, n // 15))) + [n - 1])):
-        print(f"{ld['delta_mm'][i]:12.4f} {ld['P_N'][i]:12.4f} {ld['a_mm'][i]:10.4f}")
+        print(f"{ld['delta_mm'][i]:12.4f} {ld['P_N'][i]:12.4f} {ld['a_mm'][i]:10.4f}"
+              + (f" {ld['V_mm3'][i]:12.2f} {ld['p_kPa'][i]:10.4f}" if cav else ""))
     for po in out.get("pull_off", []):
         fl, fg = po["fixed_load"], po["fixed_grips"]
         print(f"gamma = {po['gamma_J_m2']:g} J/m^2: fixed load P* = {fl['P_N']:.4f} N, "
@@ -258,6 +272,17 @@ def _parser():
     case.add_argument("--interface", choices=INTERFACES, default="no_slip",
                       help="interface model (default no_slip, the paper's cohesive contact)")
     case.add_argument("--mesh", choices=case_api.MESHES, default="default", help="mesh density")
+    case.add_argument("--cavity", default="open", metavar="MODE",
+                      help="open (default), pressure (prescribed gauge --p-kPa) or sealed "
+                      "(trapped gas): a rigid lid closes the rim")
+    case.add_argument("--p-kPa", dest="p_kPa", default=None,
+                      help="cavity gauge pressure [kPa] (--cavity pressure; > 0 inflates)")
+    case.add_argument("--p0-kPa", dest="p0_kPa", default=None,
+                      help="sealed gas gauge pressure in the undeformed shell [kPa] (default 0)")
+    case.add_argument("--p-atm-kPa", dest="p_atm_kPa", default=None,
+                      help="ambient pressure [kPa] (default 101.325)")
+    case.add_argument("--gas-exponent", dest="gas_exponent", default=None,
+                      help="sealed gas p V^n = const: n >= 1 (default 1 isothermal, 1.4 adiabatic)")
     case.add_argument("--json", action="store_true", help="print JSON instead of a table")
     run = sub.add_parser("run", help="run a study YAML on dask; write netCDF, tables and figures")
     run.add_argument("study", help="study file (YAML)")

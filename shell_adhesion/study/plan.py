@@ -137,4 +137,5 @@ def restrict(ps: PathSet, delta_max: float) -> PathSet:
     return replace(ps, delta_max=delta_max, loading_delta=ps.loading_delta[keep],
                    loading_P=ps.loading_P[keep], loading_a=ps.loading_a[keep],
                    loading_U=ps.loading_U[keep], loading_joined=ps.loading_joined[keep],
+                   loading_V=ps.loading_V[keep], loading_p=ps.loading_p[keep],
                    relaxations=relaxations, views=views)

@@ -157,6 +157,14 @@ def _scatter_vector(d, ru, jw):
     return np.bincount(d.edofs.ravel(), weights=re.ravel(), minlength=d.ndof)
 
 
+def tangent_pattern(d: Discretisation):
+    """CSR (indptr, indices) of every `tangent(d, x)`: the FE pattern, bordered by the gas
+    unknown of a sealed cavity (solver.cavity)."""
+    if d.cavity is not None and d.cavity.border:
+        return d.cavity.border[1], d.cavity.border[2]
+    return d.csr_indptr, d.csr_indices
+
+
 def tangent(d: Discretisation, x):
     """Consistent tangent (CSR, symmetric indefinite) and residual at x."""
     f, p = _fields(d, x)

@@ -16,7 +16,7 @@ import numpy as np
 
 from .contact import (Constraints, constraints, contact_reactions, deformed_radius, gaps,
                       rim_load)
-from .forms import Discretisation, potential_energy, tangent
+from .forms import Discretisation, potential_energy, tangent, tangent_pattern
 from .linear import LinearSolver, SingularTangent, Timer
 from .quality import Quality, quality, worst
 
@@ -123,7 +123,7 @@ class _Problem:
         self.d, self.interface, self.s, self.timer = d, interface, settings, timer
         cm = d.capmesh
         self.Z = cm.nodes[1, cm.outer]
-        self.linear = LinearSolver(d.csr_indptr, d.csr_indices, settings.fast_solver, timer)
+        self.linear = LinearSolver(*tangent_pattern(d), settings.fast_solver, timer)
 
     def assemble(self, x):
         t0 = time.perf_counter()

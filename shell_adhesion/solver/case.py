@@ -14,7 +14,7 @@ import numpy as np
 from .energy import EnergySurface, energy_surface, equilibrium, pull_off
 from .forms import Discretisation, discretise
 from .contact import check_interface
-from .geometry import GAMMA_MAX, Cap, InputError, check_delta_max, check_gamma
+from .geometry import GAMMA_MAX, Cap, InputError, check_delta_max, check_gamma, shown
 from .material import NEO_HOOKE, Material
 from .mesh import CapMesh, cap_mesh, mesh_spec
 from .path import LoadingPath, RelaxationPath, Settings, State, load, relax
@@ -223,7 +223,7 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
     is the solid; neo-Hooke by default.
     """
     if not (isinstance(gamma_max, (int, float)) and math.isfinite(gamma_max) and gamma_max > 0):
-        raise InputError(f"gamma_max: {gamma_max!r} must be a finite number > 0 (gamma/(C10 R))")
+        raise InputError(f"gamma_max: {shown(gamma_max)} must be a finite number > 0 (gamma/(C10 R))")
     t0 = time.perf_counter()
     d, loading = solve_loading(t, h, interface, mesh, delta_max, settings, progress, material)
     t1 = time.perf_counter()

@@ -17,6 +17,7 @@ from shell_adhesion.solver import __version__
 from shell_adhesion.solver.case import PathSet, solve_paths
 from shell_adhesion.solver.geometry import GAMMA_MAX, check_gamma
 from shell_adhesion.solver.contact import INTERFACES
+from shell_adhesion.solver.path import MaterialLimitError
 from shell_adhesion.solver.geometry import InputError, check_cap, check_delta_max
 from shell_adhesion.solver.material import MODELS, NEO_HOOKE, Material
 from shell_adhesion.solver.path import Settings
@@ -248,10 +249,14 @@ def _solve(inp: CaseInput, progress: bool) -> CaseResult:
                 bar.unit = "path"
                 bar.reset(total)
             bar.update(1)
-        ps, d, loading = solve_paths(inp.t_mm / R, inp.h_mm / R, inp.interface, inp.mesh,
-                                     inp.delta_max_mm / R, gamma_max, relax_paths=bool(g_hats),
-                                     progress=on_state, path_progress=on_path,
-                                     material=inp.material)
+        try:
+            ps, d, loading = solve_paths(inp.t_mm / R, inp.h_mm / R, inp.interface, inp.mesh,
+                                         inp.delta_max_mm / R, gamma_max,
+                                         relax_paths=bool(g_hats), progress=on_state,
+                                         path_progress=on_path, material=inp.material)
+        except MaterialLimitError as e:     # the same reason, in mm
+            e.args = (e.text(R, "mm", "delta_max_mm"),)
+            raise
     t1 = t0 + ps.stats["loading_s"]
     t2 = t1 + ps.stats["relaxation_s"]
     adhesion = ()

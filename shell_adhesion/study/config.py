@@ -56,7 +56,7 @@ import yaml
 
 from shell_adhesion.solver.geometry import GAMMA_MAX, check_gamma
 from shell_adhesion.solver.contact import INTERFACES
-from shell_adhesion.solver.geometry import InputError, check_cap, check_delta_max
+from shell_adhesion.solver.geometry import InputError, check_cap, check_delta_max, shown
 from shell_adhesion.solver.material import MODELS, NEO_HOOKE, Material
 from shell_adhesion.solver.scaling import check_C10, check_finite, check_R, gamma_hat
 
@@ -206,7 +206,7 @@ def _number(value, place) -> float:
 
 def _string(value, place) -> str:
     if not isinstance(value, str):
-        raise StudyError(f"{place}: {value!r} must be a string")
+        raise StudyError(f"{place}: {shown(value)} must be a string")
     return value
 
 
@@ -226,7 +226,7 @@ def _join(place, key):
 
 
 def _short(value):
-    text = repr(value)
+    text = shown(value)
     return text if len(text) <= 40 else text[:37] + "..."
 
 

@@ -14,8 +14,9 @@
       gamma_J_m2: [10, 20]
     material:                   # the solid (default: incompressible neo-Hookean)
       model: mooney_rivlin      #   neo_hooke, mooney_rivlin, yeoh or gent (ABAQUS's forms)
-      C01_over_C10: 0.2         #   ratios to C10: C01_over_C10, C20_over_C10, C30_over_C10,
-                                #   Jm, D1_times_C10 (= D1 [1/MPa] x C10 [MPa]; 0 incompressible)
+      C01_MPa: 0.06             #   coefficients in MPa: C01_MPa, C20_MPa, C30_MPa, Jm,
+                                #   D1_per_MPa (0 incompressible); or as ratios to C10:
+                                #   C01_over_C10, C20_over_C10, C30_over_C10, D1_times_C10
     interface: no_slip          # or frictionless (default no_slip)
     mesh: default               # coarse, default or fine (default default)
     delta_max_over_R: 0.25      # deepest loading, delta / R (default 0.25)
@@ -25,12 +26,18 @@
       relaxation_curves: true   # P, delta of every relaxation path (default true)
       deformed_states: true     # profiles and von Mises maps for figures (default true)
 
-The material's coefficients are given as ratios to C10 (the solver's `Material`): C10 stays
-the scaling modulus, so a C10 sweep at fixed ratios is post-processing of one set of FE
-paths per shell, while each value of a ratio is its own set.  D1 is given as D1_times_C10
-for the same reason (a fixed D1 in 1/MPa would change D1 C10 with every C10).  A ratio may
-also be a factor of `sweeps` or `grid` (``sweeps: {C01_over_C10: [0, 0.1, 0.2]}``); a swept
-ratio becomes a dimension of the cube.  Every requested solid is checked by the solver
+The material's coefficients are given in MPa (ABAQUS's numbers: ``material: {model:
+mooney_rivlin, C10_MPa: 0.3, C01_MPa: 0.05}``, where C10_MPa may stand in the block instead of
+base) or as ratios to C10 (C01_over_C10, ..., D1_times_C10 = D1 C10), each coefficient once.
+The plan always works with the ratios (the solver's `Material`): C10 stays the scaling
+modulus, so a C10 sweep at fixed ratios is post-processing of one set of FE paths per shell,
+while each value of a ratio is its own set.  A coefficient in MPa is turned into its ratio
+with the point's C10 (rounded to 12 significant digits, so equal ratios share their paths):
+a grid over C01_MPa at a fixed C10 is a grid over C01/C10, and a C10 sweep at a fixed
+C01_MPa changes C01/C10 with C10 (one set per C10).  Any coefficient, in either form, may be
+a factor of `sweeps` or `grid` (``grid: {C01_MPa: [0, 0.03, 0.06]}``); a ratio that varies
+between the requested points is a dimension of the cube (named as the ratio, with the MPa
+values as a coordinate beside it when the file gives them in MPa).  Every requested solid is checked by the solver
 (coefficients of the model, Jm > 0, D1 >= 0, Drucker stability), its message prefixed with
 the place, e.g. ``sweeps.C20_over_C10[1]: material: yeoh (...) is unstable ...``.
 

@@ -89,3 +89,17 @@ def test_materials_figure(swept, tmp_path):
     written, skipped = figures.write_figures(swept, tmp_path, formats=("png",), dpi=60)
     assert "fig7_materials.png" in {p.name for p in written}
     assert not skipped, skipped
+
+
+def test_cases_table_has_the_ratio_and_the_MPa_columns(swept):
+    """A cube whose study gave C01 in MPa carries C01_MPa = C01/C10 x C10 beside the ratio;
+    the cases table shows both."""
+    mpa = swept.assign_coords(C01_MPa=swept["C01_over_C10"] * swept["C10"])
+    mpa["C01_MPa"].attrs = dict(units="MPa", long_name="Mooney-Rivlin C01")
+    table = tables.cases_table(mpa)
+    i, j, k = (table.columns.index(c) for c in ("C01_over_C10 [1]", "C01_MPa [MPa]",
+                                                 "C10 [MPa]"))
+    assert len(table.rows) == 2 * int((swept["status"].sel(C01_over_C10=0.0) == "ok").sum())
+    for row in table.rows:
+        assert row[j] == pytest.approx(row[i] * row[k], rel=1e-15)
+    assert {row[i] for row in table.rows} == {0.0, 0.5}

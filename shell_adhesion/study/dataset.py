@@ -119,11 +119,10 @@ def _material_attrs(plan: Plan, material) -> dict:
     text = material.coefficients(C10) if C10 is not None else material.coefficients()
     fixed = {f"material_{r}": v for r, v in study.material.items() if r != "model"}
     return dict(material_model=study.model,
-                material=f"{material.model} ({text})" if not plan.ratio_axes
+                material=text if not plan.ratio_axes    # text names the model
                 else f"{study.model} (swept: {', '.join(plan.ratio_axes)})",
                 title=f"{study.description or f'shell-adhesion study {study.name}'}; "
-                      f"material {study.model}"
-                      + (f" ({text})" if not plan.ratio_axes else ""),
+                      f"material " + (text if not plan.ratio_axes else study.model),
                 source=_global_attrs(plan, "")["source"].replace(
                     "incompressible neo-Hookean", f"{study.model} hyperelastic"),
                 **fixed)

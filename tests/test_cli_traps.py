@@ -70,6 +70,8 @@ BAD = [
     ("gent Jm negative", None, CASE + ["--material", "gent", "--Jm", "-1"], "--Jm: -1 must be > 0"),
     ("D1 negative", None, CASE + ["--D1", "-0.01"],
      "--D1: -0.01 /MPa must be >= 0 (0: incompressible)"),
+    ("gent lock-up", None, CASE + ["--material", "gent", "--Jm", "0.001", "--mesh", "coarse"],
+     "gent limit: the solid locks up at delta = "),
     ("unknown model", None, CASE + ["--material", "ogden"],
      "--material: 'ogden' must be one of neo-hookean, mooney-rivlin, yeoh, gent"),
     ("C20 not a number", None, CASE + ["--material", "yeoh", "--C20", "abc"],

@@ -14,7 +14,8 @@ import pickle
 import numpy as np
 import pytest
 
-from shell_adhesion.solver.geometry import InputError
+from shell_adhesion.solver.geometry import InputError, check_cap
+from shell_adhesion.solver.scaling import check_finite
 from shell_adhesion.solver.material import (NEO_HOOKE, Material, UnstableMaterial,
                                             cauchy_stress, energy, homogeneous_stress,
                                             lagrangian, lagrangian_derivatives)
@@ -208,6 +209,23 @@ def test_bad_coefficients_in_MPa_refused(kwargs, message):
 def test_numpy_scalars_are_numbers():
     m = Material.from_MPa("mooney_rivlin", C10_MPa=np.float32(0.3), C01_MPa=np.int64(0))
     assert m == Material("mooney_rivlin") and type(m.C01_over_C10) is float
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda: Material("yeoh", C20_over_C10=np.float64(np.nan)),
+     "C20_over_C10: nan must be a finite number"),
+    (lambda: Material.from_MPa("neo_hooke", C10_MPa=np.float64(-0.3)),
+     "C10_MPa: -0.3 must be a number > 0"),
+    (lambda: Material.from_MPa("yeoh", C10_MPa=0.3, C01_MPa=np.float64(0.05)),
+     "C01: 0.05 is not a coefficient of the yeoh model"),
+    (lambda: check_cap(np.float64(np.inf), 1.0), "t/R: inf must be a finite number"),
+    (lambda: check_finite(np.float32(np.nan), "gamma"), "gamma: nan must be a finite number"),
+])
+def test_numpy_scalars_print_as_plain_numbers(call, message):
+    """Messages show numbers as numbers, never numpy's repr (np.float64(...))."""
+    with pytest.raises(InputError) as e:
+        call()
+    assert message in str(e.value) and "np." not in str(e.value)
 
 
 def test_unstable_sets_refused_with_the_stretch():

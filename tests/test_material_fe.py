@@ -13,9 +13,10 @@ from skfem import MeshQuad1, MeshQuad2
 from shell_adhesion.solver.contact import Constraints, constraints
 from shell_adhesion.solver.forms import deformation, discretise, residual, tangent
 from shell_adhesion.solver.geometry import Cap
-from shell_adhesion.solver.material import Material, cauchy_stress, limit_exceeded
+from shell_adhesion.solver.material import Material, cauchy_stress, limit_exceeded, limit_state
 from shell_adhesion.solver.mesh import cap_mesh, mesh_spec, scaled
-from shell_adhesion.solver.path import ConvergenceError, Settings, Timer, _Problem, load
+from shell_adhesion.solver.path import (LOCK_UP, ConvergenceError, MaterialLimitError, Settings,
+                                        Timer, _Problem, load)
 
 C10 = 0.7
 MATERIALS = {
@@ -169,6 +170,32 @@ def test_gent_shell_near_lock_up_loads():
     assert np.all(np.isfinite(path.array("P"))) and np.all(np.isfinite(path.array("U")))
     worst = max(limit_exceeded(deformation(d, s.x)[0], m) for s in path.states)
     assert 0.5 < worst < 1.0
+
+
+def test_gent_lock_up_ends_the_loading_with_the_reason():
+    """A Gent shell whose Jm the loading cannot stay under stops with MaterialLimitError
+    at a converged state within 1 % of Jm (never NaN, never a generic stall)."""
+    m = Material("gent", Jm=0.001)
+    d = discretise(cap_mesh(Cap(0.15, 1.0), mesh_spec("coarse")), material=m)
+    with pytest.raises(MaterialLimitError) as info:
+        load(d, "no_slip", 0.25)
+    e = info.value
+    assert LOCK_UP <= e.ratio < 1.0
+    assert 0.0 < e.delta < 0.25 and np.isfinite(e.I1bar) and 1.0 < e.stretch < 1.1
+    assert e.I1bar - 3 == pytest.approx(e.ratio * 0.001, rel=1e-9)
+    text = str(e)
+    assert "locks up at delta" in text and "Jm = 0.001" in text and "np." not in text
+
+
+def test_limit_state_of_a_uniaxial_stretch():
+    """limit_state finds I1bar and the largest principal stretch of a homogeneous state."""
+    lam = 1.2
+    f = np.array([1 / np.sqrt(lam), 0.0, 0.0, lam, 1 / np.sqrt(lam)])[:, None]
+    ratio, I1bar, stretch = limit_state(f, Material("gent", Jm=2.0))
+    assert I1bar == pytest.approx(lam ** 2 + 2 / lam, rel=1e-12)
+    assert ratio == pytest.approx((I1bar - 3) / 2.0, rel=1e-12)
+    assert stretch == pytest.approx(lam, rel=1e-12)
+    assert limit_state(f, Material()) is None
 
 
 def _events(L, C10_, material):

@@ -90,8 +90,8 @@ BAD = [
      "material.model: missing"),
     ("unknown material model", GOOD + "material: {model: ogden}\n",
      "material.model: 'ogden' must be one of neo_hooke, mooney_rivlin, yeoh, gent"),
-    ("unknown material key", GOOD + "material: {model: mooney_rivlin, C01_MPa: 0.05}\n",
-     "material.C01_MPa: unknown key"),
+    ("unknown material key", GOOD + "material: {model: mooney_rivlin, C01: 0.05}\n",
+     "material.C01: unknown key; did you mean C01_MPa?"),
     ("ratio not of the model", GOOD + "material: {model: yeoh, C01_over_C10: 0.2}\n",
      "material: C01_over_C10: 0.2 is not a coefficient of the yeoh model"),
     ("gent without Jm", GOOD + "material: {model: gent}\n",
@@ -101,6 +101,25 @@ BAD = [
     ("unstable swept ratio", GOOD + "material: {model: yeoh}\n"
      "grid:\n  C20_over_C10: [0, -0.3]\n",
      "grid.C20_over_C10[1]: material: yeoh (C20/C10 = -0.3, C30/C10 = 0) is unstable (Drucker): the uniaxial tangent stiffness d sigma / d stretch is <= 0 at stretch 1.53"),
+    ("coefficient twice in the block",
+     GOOD + "material: {model: mooney_rivlin, C01_MPa: 0.05, C01_over_C10: 0.1}\n",
+     "material.C01_over_C10: the same coefficient is given as material.C01_MPa; give each "
+     "coefficient once, in MPa or as a ratio to C10"),
+    ("coefficient swept in the other form",
+     GOOD + "material: {model: mooney_rivlin, C01_over_C10: 0.1}\ngrid:\n  C01_MPa: [0.03]\n",
+     "material.C01_over_C10: the same coefficient is given as grid.C01_MPa"),
+    ("MPa coefficient not of the model", GOOD + "material: {model: yeoh, C01_MPa: 0.05}\n",
+     "material.C01_MPa: not a coefficient of the yeoh model (it has C10_MPa, C20_MPa, "
+     "C30_MPa, D1_per_MPa"),
+    ("unstable in MPa", GOOD + "material: {model: mooney_rivlin, C01_MPa: -0.2}\n",
+     "material.C01_MPa: material: mooney_rivlin (C10 = 0.3 MPa, C01 = -0.2 MPa) is unstable "
+     "(Drucker)"),
+    ("swept MPa coefficient unstable", GOOD + "material: {model: yeoh}\n"
+     "grid:\n  C20_MPa: [0, -0.03]\n",
+     "grid.C20_MPa[1]: material: yeoh (C10 = 0.3 MPa, C20 = -0.03 MPa, C30 = 0 MPa) is "
+     "unstable (Drucker)"),
+    ("C10 in base and material", GOOD + "material: {model: neo_hooke, C10_MPa: 0.3}\n",
+     "material.C10_MPa: C10 is given in base.C10_MPa too (0.3 MPa); give it once"),
     ("swept ratio of neo-Hooke", GOOD.replace("  t_over_R: [0.15, 0.2]\n",
                                               "  C01_over_C10: [0, 0.2]\n"),
      "sweeps.C01_over_C10[1]: C01_over_C10: 0.2 is not a coefficient of the neo_hooke model"),

@@ -20,6 +20,13 @@ sweeps:
 """
 
 
+MPA = NH.replace("name: nh", "name: mpa").replace("C10_MPa: 0.3, ", "") + """\
+material: {model: mooney_rivlin, C10_MPa: 0.3}
+grid:
+  C01_MPa: [0, 0.15]
+"""
+
+
 def run(tmp_path, name, text, cat):
     path = tmp_path / f"{name}.yaml"
     path.write_text(text)
@@ -45,3 +52,15 @@ def test_c01_sweep_is_a_dimension_and_zero_is_neo_hooke(tmp_path):
     p5 = mr.P_star.sel(C01_over_C10=0.5, **at).item()
     assert np.isfinite(p5) and p5 < p0 < 0          # stiffer: a more tensile pull-off
     assert (mr.status.sel(**at) == "ok").all()
+
+    # the same solids in MPa: C01_MPa = 0.15 at C10 = 0.3 is C01/C10 = 0.5, nothing solved
+    mpa_out, mpa = run(tmp_path, "mpa", MPA, cat)
+    assert mpa_out.computed == [] and len(mpa_out.reused) == 2
+    assert list(mpa.C01_over_C10.values) == [0.0, 0.5]
+    assert mpa.C01_MPa.attrs["units"] == "MPa"
+    assert mpa.C01_MPa.sel(C10=0.3).values.tolist() == [0.0, 0.15]
+    np.testing.assert_array_equal(mpa.P_star.sel(**at).values, mr.P_star.sel(**at).values)
+    from shell_adhesion.study.config import validate
+    from shell_adhesion.study.dataset import study_of
+    back = validate(study_of(mpa))
+    assert back.grid == {"C01_MPa": (0.0, 0.15)} and back.base["C10_MPa"] == 0.3

@@ -105,3 +105,39 @@ def test_swept_ratio_plans_one_path_set_per_value():
     fixed = make_plan(study(base=BASE, material=dict(model="mooney_rivlin", C01_over_C10=0.2)))
     assert fixed.ratio_axes is None and len(fixed.shells) == 1
     assert fixed.shells[0].key["material"] == plan.shells[2].key["material"]
+
+
+def test_coefficients_in_MPa_plan_by_their_ratios():
+    """material: {model, C10_MPa, C01_MPa} is the study of the ratio C01_MPa / C10_MPa (the
+    same key); a grid over C01_MPa at fixed C10 plans one set per ratio; a C10 sweep at a
+    fixed C01_MPa changes the ratio (one set per C10), at a fixed ratio it does not."""
+    from shell_adhesion.solver.material import Material
+
+    base = {k: v for k, v in BASE.items() if k != "C10_MPa"}
+    mpa = make_plan(study(base=base, material=dict(model="mooney_rivlin", C10_MPa=0.3,
+                                                  C01_MPa=0.06)))
+    ratio = make_plan(study(base=BASE, material=dict(model="mooney_rivlin", C01_over_C10=0.2)))
+    assert mpa.ratio_axes is None and len(mpa.shells) == 1
+    assert mpa.shells[0].key == ratio.shells[0].key          # 0.06 / 0.3 is the ratio 0.2
+    assert mpa.points == ratio.points
+
+    grid = make_plan(study(base=BASE, material=dict(model="mooney_rivlin"),
+                           grid=dict(C01_MPa=[0.03, 0.06, 0.09])))
+    assert grid.ratio_axes == {"C01_over_C10": (0.1, 0.2, 0.3)}
+    assert [sh.material for sh in grid.shells] == [
+        Material("mooney_rivlin", C01_over_C10=c) for c in (0.1, 0.2, 0.3)]
+    assert grid.shells[1].key == ratio.shells[0].key
+
+    fixed_MPa = make_plan(study(base=BASE, material=dict(model="mooney_rivlin", C01_MPa=0.06),
+                                sweeps=dict(C10_MPa=[0.2, 0.3])))
+    assert fixed_MPa.ratio_axes == {"C01_over_C10": (0.2, 0.3)}   # 0.06/0.3, 0.06/0.2
+    assert len(fixed_MPa.shells) == 2
+    fixed_ratio = make_plan(study(base=BASE, material=dict(model="mooney_rivlin",
+                                                           C01_over_C10=0.2),
+                                  sweeps=dict(C10_MPa=[0.2, 0.3])))
+    assert fixed_ratio.ratio_axes is None and len(fixed_ratio.shells) == 1
+
+    d1 = make_plan(study(base=BASE, grid=dict(D1_per_MPa=[0, 0.01])))
+    assert d1.ratio_axes == {"D1_times_C10": (0.0, 0.003)}
+    jm = make_plan(study(base=BASE, material=dict(model="gent"), grid=dict(Jm=[10, 20])))
+    assert jm.ratio_axes == {"Jm": (10.0, 20.0)} and len(jm.shells) == 2

@@ -11,10 +11,11 @@ from .case import (GAMMA_MAX, PathSet, Relaxation, relaxation_starts, relaxation
 from .contact import INTERFACES
 from .geometry import Cap, InputError, check_cap, check_delta_max, check_gamma
 from .material import MODELS, NEO_HOOKE, Material
-from .path import ConvergenceError, QualityError, Settings
+from .path import ConvergenceError, MaterialLimitError, QualityError, Settings
 
 __version__ = "0.1.0"
 __all__ = ["GAMMA_MAX", "PathSet", "Relaxation", "relaxation_starts", "relaxation_task",
            "solve_loading", "solve_paths", "INTERFACES", "Cap", "InputError", "check_cap",
-           "check_delta_max", "check_gamma", "ConvergenceError", "QualityError", "Settings",
+           "check_delta_max", "check_gamma", "ConvergenceError", "MaterialLimitError",
+           "QualityError", "Settings",
            "MODELS", "NEO_HOOKE", "Material", "__version__"]

@@ -15,7 +15,7 @@ from .cavity import OPEN, Cavity, bind, first_touch, lifted
 from .energy import EnergySurface, energy_surface, equilibrium, pull_off
 from .forms import Discretisation, discretise
 from .contact import check_interface
-from .geometry import GAMMA_MAX, Cap, InputError, check_delta_max, check_gamma
+from .geometry import GAMMA_MAX, Cap, InputError, check_delta_max, check_gamma, shown
 from .material import NEO_HOOKE, Material
 from .mesh import CapMesh, cap_mesh, mesh_spec
 from .path import LoadingPath, RelaxationPath, Settings, State, load, relax
@@ -257,7 +257,7 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
     is the solid; neo-Hooke by default; `cavity` (solver.cavity) what fills the cavity.
     """
     if not (isinstance(gamma_max, (int, float)) and math.isfinite(gamma_max) and gamma_max > 0):
-        raise InputError(f"gamma_max: {gamma_max!r} must be a finite number > 0 (gamma/(C10 R))")
+        raise InputError(f"gamma_max: {shown(gamma_max)} must be a finite number > 0 (gamma/(C10 R))")
     t0 = time.perf_counter()
     d, loading = solve_loading(t, h, interface, mesh, delta_max, settings, progress, material,
                                cavity)

@@ -6,10 +6,21 @@ the substrate z = 0 at the origin.  t = 1 is a solid cap (no cavity).
 """
 from dataclasses import dataclass
 import math
+import numbers
 
 
 class InputError(ValueError):
     """Bad input: the message names the field, the value and the rule."""
+
+
+def shown(value) -> str:
+    """A value as message text: a number (a numpy scalar too) as a plain Python number,
+    anything else by its repr (never ``np.float64(...)``)."""
+    if isinstance(value, numbers.Integral) and not isinstance(value, bool):
+        return repr(int(value))
+    if isinstance(value, numbers.Real) and not isinstance(value, bool):
+        return repr(float(value))
+    return repr(value)
 
 
 @dataclass(frozen=True)
@@ -65,7 +76,7 @@ GAMMA_MAX = 0.03      # largest gamma / (C10 R) the relaxation paths serve
 
 def _finite(name, value):
     if not isinstance(value, (int, float)) or isinstance(value, bool) or not math.isfinite(value):
-        raise InputError(f"{name}: {value!r} must be a finite number")
+        raise InputError(f"{name}: {shown(value)} must be a finite number")
 
 
 def check_cap(t_over_R, h_over_R, t_name="t/R", h_name="h/R"):

@@ -29,7 +29,7 @@ import numbers
 
 import numpy as np
 
-from .geometry import InputError
+from .geometry import InputError, shown
 
 _RR, _RZ, _ZR, _ZZ, _TT = range(5)
 
@@ -69,7 +69,7 @@ class Material:
                     raise InputError("Jm: the gent model needs Jm (a number > 0)")
                 continue
             if not _is_number(value):
-                raise InputError(f"{name}: {value!r} must be a finite number")
+                raise InputError(f"{name}: {shown(value)} must be a finite number")
             object.__setattr__(self, name, float(value))
             if name not in used and name != "D1_times_C10" and value != 0:
                 raise InputError(f"{name}: {value:g} is not a coefficient of the "
@@ -87,16 +87,16 @@ class Material:
                  Jm=None, D1_per_MPa=0.0):
         """The Material of ABAQUS coefficients in MPa (D1 in 1/MPa); C10_MPa stays the scale."""
         if not _is_number(C10_MPa) or not C10_MPa > 0:
-            raise InputError(f"C10_MPa: {C10_MPa!r} must be a number > 0")
+            raise InputError(f"C10_MPa: {shown(C10_MPa)} must be a number > 0")
         values = dict(C01=C01_MPa, C20=C20_MPa, C30=C30_MPa)
         for name, value in (*values.items(), ("D1", D1_per_MPa)):
             if not _is_number(value):
-                raise InputError(f"{name}: {value!r} must be a finite number")
+                raise InputError(f"{name}: {shown(value)} must be a finite number")
         if model in MODELS:
             used = [n for _, n in _COEFFICIENTS[model]]
             for name, value in (*values.items(), ("Jm", Jm)):
                 if name not in used and value is not None and value != 0:
-                    raise InputError(f"{name}: {value!r} is not a coefficient of the {model} "
+                    raise InputError(f"{name}: {shown(value)} is not a coefficient of the {model} "
                                      f"model ({', '.join(['C10', *used, 'D1'])})")
         if not D1_per_MPa >= 0:
             raise InputError(f"D1: {D1_per_MPa:g} /MPa must be >= 0 (0: incompressible)")
@@ -287,6 +287,25 @@ def limit_exceeded(f, m: Material):
     with np.errstate(invalid="ignore", divide="ignore"):
         x = J ** (-2.0 / 3.0) * np.sum(f * f, axis=0) - 3.0
     return float(np.nanmax(x, initial=-np.inf)) / m.Jm   # NaN: an inverted point
+
+
+def limit_state(f, m: Material):
+    """Where a Gent solid is nearest its limit: ((I1bar - 3) / Jm, I1bar, largest principal
+    stretch) at the worst point of f; None for another model or where every point is
+    inverted.  A state needs (I1bar - 3) / Jm < 1."""
+    if m.model != "gent":
+        return None
+    J = (f[_RR] * f[_ZZ] - f[_RZ] * f[_ZR]) * f[_TT]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        I1bar = J ** (-2.0 / 3.0) * np.sum(f * f, axis=0)
+    if not np.isfinite(I1bar).any():
+        return None
+    k = np.unravel_index(np.nanargmax(I1bar), I1bar.shape)
+    F = f[(slice(None),) + k]
+    # in-plane stretches: singular values of [[F_rr, F_rz], [F_zr, F_zz]]; F_tt the hoop one
+    s_in = np.linalg.svd(np.array([[F[_RR], F[_RZ]], [F[_ZR], F[_ZZ]]]), compute_uv=False)
+    return (float(I1bar[k] - 3.0) / m.Jm, float(I1bar[k]),
+            float(max(s_in.max(), abs(F[_TT]))))
 
 
 def energy(f, m: Material = NEO_HOOKE):

@@ -16,13 +16,37 @@ import numpy as np
 
 from .contact import (Constraints, constraints, contact_reactions, deformed_radius, gaps,
                       rim_load)
-from .forms import Discretisation, potential_energy, tangent, tangent_pattern
+from .forms import Discretisation, deformation, potential_energy, tangent, tangent_pattern
+from .geometry import shown
 from .linear import LinearSolver, SingularTangent, Timer
+from .material import limit_state
 from .quality import Quality, quality, worst
 
 
 class ConvergenceError(RuntimeError):
     """No equilibrium could be found: the message says where and why."""
+
+
+class MaterialLimitError(ConvergenceError):
+    """The solid locks up: a Gent solid's I1bar - 3 has come within LOCK_UP of Jm, so the
+    loading cannot go on (`delta` / R, `ratio` = (I1bar - 3) / Jm, `I1bar`, `stretch` the
+    largest principal stretch, at the worst point of the last converged state)."""
+
+    def __init__(self, delta, Jm, ratio, I1bar, stretch):
+        self.delta, self.Jm, self.ratio, self.I1bar, self.stretch = delta, Jm, ratio, I1bar, stretch
+        super().__init__(self.text())
+
+    def text(self, scale=1.0, unit="R", delta_flag="delta_max", Jm_flag="Jm") -> str:
+        """The one-line reason; delta times `scale` in `unit` (default delta / R), the
+        inputs named `delta_flag` and `Jm_flag`."""
+        return (f"gent limit: the solid locks up at delta = {self.delta * scale:.4g} {unit}: "
+                f"I1bar - 3 = {self.I1bar - 3:.4g} reaches {100 * self.ratio:.2f} % of "
+                f"{Jm_flag} = {self.Jm:g} (I1bar = {self.I1bar:.6g}, largest principal "
+                f"stretch {self.stretch:.4g}); lower {delta_flag} below "
+                f"{self.delta * scale:.3g} {unit} or raise {Jm_flag}")
+
+
+LOCK_UP = 0.99   # (I1bar - 3) / Jm of a Gent state beyond which a failed step means lock-up
 
 
 class QualityError(ConvergenceError):
@@ -170,7 +194,7 @@ class _Problem:
     def _newton(self, c: Constraints, x, delta, target=None):
         d = self.d
         if not (math.isfinite(delta) and np.all(np.isfinite(x))):
-            raise ConvergenceError(f"non-finite start of Newton (delta = {delta!r})")
+            raise ConvergenceError(f"non-finite start of Newton (delta = {shown(delta)})")
         x = x.copy()
         x[c.rimz] = -delta
         if target is not None:
@@ -202,7 +226,8 @@ class _Problem:
                 delta += dd
                 x[c.rimz] = -delta
             x[c.free] += dx
-        raise ConvergenceError(f"Newton did not converge (residuals {history[-3:]})")
+        raise ConvergenceError("Newton did not converge (residuals "
+                               + ", ".join(f"{h:.3g}" for h in history[-3:]) + ")")
 
     def tangent_direction(self, K, c, lu=None):
         """dx/ddelta (full vector) and dP/ddelta at the state of K.
@@ -249,7 +274,8 @@ def load(d: Discretisation, interface: str, delta_max: float,
     the undeformed shell.
     """
     if not (math.isfinite(delta_max) and delta_max > 0):
-        raise ValueError(f"delta_max: {delta_max!r} must be a finite number > 0 (units of R)")
+        raise ValueError(f"delta_max: {shown(delta_max)} must be a finite number > 0 "
+                         "(units of R)")
     timer = Timer()
     pb = _Problem(d, interface, settings, timer)
     n_outer = len(d.capmesh.outer)
@@ -284,6 +310,7 @@ def load(d: Discretisation, interface: str, delta_max: float,
             xn, dn, Kn, rn, hist, target = _advance(pb, c, x, delta, dx, free_nodes, target,
                                                     step, delta_max)
         except ConvergenceError as err:
+            _check_lock_up(d, x, delta)
             # the cap never grows on failure, so repeated failures end at step_min
             step_cap = min(step_cap, step) / 2
             if step_cap < settings.step_min:
@@ -319,6 +346,15 @@ def load(d: Discretisation, interface: str, delta_max: float,
     dx, dP = pb.tangent_direction(K, c)
     states[-1] = _with_stiffness(states[-1], dP)
     return LoadingPath(interface, tuple(states), timer)
+
+
+def _check_lock_up(d: Discretisation, x, delta):
+    """Raise MaterialLimitError if the converged state x is within LOCK_UP of a Gent
+    solid's limit: its tangent is then >= 1e4 times the initial one at that point, and
+    smaller steps only creep towards the limit."""
+    near = limit_state(deformation(d, x)[0], d.material)
+    if near is not None and near[0] >= LOCK_UP:
+        raise MaterialLimitError(delta, d.material.Jm, *near)
 
 
 def _advance(pb, c, x, delta, dx, free_nodes, target, step, delta_max):
@@ -388,7 +424,7 @@ def relax(d: Discretisation, interface: str, start: State, stop, step: float,
     `settings.max_points` states.
     """
     if not (math.isfinite(step) and step > 0):
-        raise ValueError(f"relaxation step: {step!r} must be a finite number > 0 (units of R)")
+        raise ValueError(f"relaxation step: {shown(step)} must be a finite number > 0 (units of R)")
     timer = Timer()
     pb = _Problem(d, interface, settings, timer)
     held = list(start.held)

@@ -13,7 +13,7 @@ its own field names.
 import math
 from numbers import Real
 
-from .geometry import InputError
+from .geometry import InputError, shown
 
 R_MM_RANGE = (1e-3, 1e4)        # outer radius R [mm]: 1 um to 10 m
 C10_MPA_RANGE = (1e-6, 1e4)     # neo-Hookean C10 [MPa]: 1 Pa to 10 GPa
@@ -58,7 +58,7 @@ def check_finite(value, name: str, unit: str = "") -> float:
     """`value` as a float; InputError unless it is a finite real number (not a bool)."""
     suffix = f" ({unit})" if unit else ""
     if isinstance(value, bool) or not isinstance(value, Real):
-        raise InputError(f"{name}: {value!r} must be a number{suffix}")
+        raise InputError(f"{name}: {shown(value)} must be a number{suffix}")
     if not math.isfinite(value):
-        raise InputError(f"{name}: {value!r} must be a finite number{suffix}")
+        raise InputError(f"{name}: {shown(value)} must be a finite number{suffix}")
     return float(value)

@@ -19,6 +19,7 @@ from shell_adhesion.solver.cavity import MODES as CAVITY_MODES, OPEN, P_ATM_KPA,
     CavitySnap, check_cavity
 from shell_adhesion.solver.geometry import GAMMA_MAX, check_gamma
 from shell_adhesion.solver.contact import INTERFACES
+from shell_adhesion.solver.path import MaterialLimitError
 from shell_adhesion.solver.geometry import InputError, check_cap, check_delta_max
 from shell_adhesion.solver.material import MODELS, NEO_HOOKE, Material
 from shell_adhesion.solver.path import Settings
@@ -331,9 +332,12 @@ def _solve(inp: CaseInput, progress: bool) -> CaseResult:
                                          cavity=inp.cavity)
         except CavitySnap as err:
             kPa = C10 * 1e3
-            raise InputError(f"cavity pressure: {err.p_target * kPa:g} kPa makes the free shell snap "
-                             f"(limit point) before contact; it holds "
+            raise InputError(f"cavity pressure: {err.p_target * kPa:g} kPa makes the free shell "
+                             f"snap (limit point) before contact; it holds "
                              f"{err.p_reached * kPa:.4g} kPa") from None
+        except MaterialLimitError as e:     # the same reason, in mm
+            e.args = (e.text(R, "mm", "delta_max_mm"),)
+            raise
     t1 = t0 + ps.stats["loading_s"]
     t2 = t1 + ps.stats["relaxation_s"]
     adhesion = ()

@@ -23,6 +23,7 @@ import sys
 import time
 
 from shell_adhesion.solver import INTERFACES, ConvergenceError, InputError, __version__
+from shell_adhesion.solver.path import MaterialLimitError
 
 from . import case as case_api
 
@@ -75,9 +76,12 @@ def _run_case(ns):
                      [_number("--gamma", g, "J/m^2") for g in ns.gamma or []],
                      None if ns.delta_max is None else _number("--delta-max", ns.delta_max, "mm"),
                      ns.interface, ns.mesh, names=CASE_FLAGS, material=ns.material, **solid)
-    result = case_api.solve_case(inp.R_mm, inp.t_mm, inp.h_mm, inp.C10_MPa, inp.gamma_J_m2,
-                        delta_max_mm=inp.delta_max_mm, interface=inp.interface, mesh=inp.mesh,
-                        material=ns.material, **solid)
+    try:
+        result = case_api.solve_case(inp.R_mm, inp.t_mm, inp.h_mm, inp.C10_MPa, inp.gamma_J_m2,
+                                     delta_max_mm=inp.delta_max_mm, interface=inp.interface,
+                                     mesh=inp.mesh, material=ns.material, **solid)
+    except MaterialLimitError as e:     # the request cannot be met with this Jm: exit 2
+        raise InputError(e.text(inp.R_mm, "mm", "--delta-max", "--Jm")) from None
     if ns.json:
         print(result.to_json())
     else:

@@ -14,8 +14,9 @@
       gamma_J_m2: [10, 20]
     material:                   # the solid (default: incompressible neo-Hookean)
       model: mooney_rivlin      #   neo_hooke, mooney_rivlin, yeoh or gent (ABAQUS's forms)
-      C01_over_C10: 0.2         #   ratios to C10: C01_over_C10, C20_over_C10, C30_over_C10,
-                                #   Jm, D1_times_C10 (= D1 [1/MPa] x C10 [MPa]; 0 incompressible)
+      C01_MPa: 0.06             #   coefficients in MPa: C01_MPa, C20_MPa, C30_MPa, Jm,
+                                #   D1_per_MPa (0 incompressible); or as ratios to C10:
+                                #   C01_over_C10, C20_over_C10, C30_over_C10, D1_times_C10
     interface: no_slip          # or frictionless (default no_slip)
     mesh: default               # coarse, default or fine (default default)
     delta_max_over_R: 0.25      # deepest loading, delta / R (default 0.25)
@@ -25,12 +26,18 @@
       relaxation_curves: true   # P, delta of every relaxation path (default true)
       deformed_states: true     # profiles and von Mises maps for figures (default true)
 
-The material's coefficients are given as ratios to C10 (the solver's `Material`): C10 stays
-the scaling modulus, so a C10 sweep at fixed ratios is post-processing of one set of FE
-paths per shell, while each value of a ratio is its own set.  D1 is given as D1_times_C10
-for the same reason (a fixed D1 in 1/MPa would change D1 C10 with every C10).  A ratio may
-also be a factor of `sweeps` or `grid` (``sweeps: {C01_over_C10: [0, 0.1, 0.2]}``); a swept
-ratio becomes a dimension of the cube.  Every requested solid is checked by the solver
+The material's coefficients are given in MPa (ABAQUS's numbers: ``material: {model:
+mooney_rivlin, C10_MPa: 0.3, C01_MPa: 0.05}``, where C10_MPa may stand in the block instead of
+base) or as ratios to C10 (C01_over_C10, ..., D1_times_C10 = D1 C10), each coefficient once.
+The plan always works with the ratios (the solver's `Material`): C10 stays the scaling
+modulus, so a C10 sweep at fixed ratios is post-processing of one set of FE paths per shell,
+while each value of a ratio is its own set.  A coefficient in MPa is turned into its ratio
+with the point's C10 (rounded to 12 significant digits, so equal ratios share their paths):
+a grid over C01_MPa at a fixed C10 is a grid over C01/C10, and a C10 sweep at a fixed
+C01_MPa changes C01/C10 with C10 (one set per C10).  Any coefficient, in either form, may be
+a factor of `sweeps` or `grid` (``grid: {C01_MPa: [0, 0.03, 0.06]}``); a ratio that varies
+between the requested points is a dimension of the cube (named as the ratio, with the MPa
+values as a coordinate beside it when the file gives them in MPa).  Every requested solid is checked by the solver
 (coefficients of the model, Jm > 0, D1 >= 0, Drucker stability), its message prefixed with
 the place, e.g. ``sweeps.C20_over_C10[1]: material: yeoh (...) is unstable ...``.
 
@@ -56,12 +63,20 @@ import yaml
 
 from shell_adhesion.solver.geometry import GAMMA_MAX, check_gamma
 from shell_adhesion.solver.contact import INTERFACES
-from shell_adhesion.solver.geometry import InputError, check_cap, check_delta_max
-from shell_adhesion.solver.material import MODELS, NEO_HOOKE, Material
+from shell_adhesion.solver.geometry import InputError, check_cap, check_delta_max, shown
+from shell_adhesion.solver.material import MODELS, NEO_HOOKE, Material, UnstableMaterial
 from shell_adhesion.solver.scaling import check_C10, check_finite, check_R, gamma_hat
 
 FACTORS = ("C10_MPa", "t_over_R", "h_over_R", "gamma_J_m2")
 RATIOS = ("C01_over_C10", "C20_over_C10", "C30_over_C10", "Jm", "D1_times_C10")
+# the same coefficients in MPa (D1 in 1/MPa): the ratio of each (Jm is a ratio already)
+IN_MPA = {"C01_MPa": "C01_over_C10", "C20_MPa": "C20_over_C10", "C30_MPa": "C30_over_C10",
+          "D1_per_MPa": "D1_times_C10"}
+COEFFICIENTS = RATIOS + tuple(IN_MPA)
+# the coefficients of each model (D1 in any form, for any model)
+_OF_MODEL = {"neo_hooke": (), "mooney_rivlin": ("C01_over_C10",),
+             "yeoh": ("C20_over_C10", "C30_over_C10"), "gent": ("Jm",)}
+_RATIO_DIGITS = 12          # a ratio of MPa values is rounded so equal ratios share paths
 MESHES = ("coarse", "default", "fine")
 KEYS = ("name", "description", "R_mm", "base", "sweeps", "grid", "material", "interface", "mesh",
         "delta_max_over_R", "outputs")
@@ -106,8 +121,23 @@ class Study:
 
     @property
     def swept_ratios(self) -> tuple:
-        """The material ratios the sweeps or the grid vary (cube dimensions), in RATIOS order."""
-        return tuple(r for r in RATIOS if r in self.sweeps or r in self.grid)
+        """The material ratios that vary between the requested points (cube dimensions), in
+        RATIOS order: those the sweeps or the grid vary, as ratios or in MPa, and those given
+        in MPa while C10 varies (the ratio C01_MPa / C10_MPa changes with C10)."""
+        varied = set(self.sweeps) | set(self.grid)
+        c10_varies = "C10_MPa" in varied
+        out = set()
+        for k in varied | set(self.material):
+            r = IN_MPA.get(k, k)
+            if r in RATIOS and (k in varied or (c10_varies and k in IN_MPA)):
+                out.add(r)
+        return tuple(r for r in RATIOS if r in out)
+
+    @property
+    def in_MPa(self) -> tuple:
+        """The coefficients the file gives in MPa (C01_MPa, ..., D1_per_MPa), IN_MPA order."""
+        given = set(self.material) | set(self.sweeps) | set(self.grid)
+        return tuple(k for k in IN_MPA if k in given)
 
     def as_dict(self) -> dict:
         """The validated study as plain data (for provenance)."""
@@ -206,7 +236,7 @@ def _number(value, place) -> float:
 
 def _string(value, place) -> str:
     if not isinstance(value, str):
-        raise StudyError(f"{place}: {value!r} must be a string")
+        raise StudyError(f"{place}: {shown(value)} must be a string")
     return value
 
 
@@ -226,7 +256,7 @@ def _join(place, key):
 
 
 def _short(value):
-    text = repr(value)
+    text = shown(value)
     return text if len(text) <= 40 else text[:37] + "..."
 
 
@@ -240,7 +270,7 @@ def _factor_value(factor, value, place) -> float:
 
 
 def _factor_lists(doc, place) -> dict:
-    _keys(doc, place, FACTORS + RATIOS, "factor")
+    _keys(doc, place, FACTORS + COEFFICIENTS, "factor")
     out = {}
     for factor, values in doc.items():
         fplace = _join(place, factor)
@@ -291,6 +321,13 @@ def _validate(doc, source, sha256) -> Study:
         base = {f: _factor_value(f, v, f"base.{f}") for f, v in doc["base"].items()}
     sweeps = _factor_lists(doc["sweeps"], "sweeps") if "sweeps" in doc else {}
     grid = _factor_lists(doc["grid"], "grid") if "grid" in doc else {}
+    material = _material(doc["material"]) if "material" in doc else {}
+    if "C10_MPa" in material:
+        if "C10_MPa" in base:
+            raise StudyError(f"material.C10_MPa: C10 is given in base.C10_MPa too "
+                             f"({base['C10_MPa']:g} MPa); give it once")
+        base["C10_MPa"] = material.pop("C10_MPa")
+    _check_coefficients(material, sweeps, grid)
     if "sweeps" in doc and not sweeps:
         raise StudyError("sweeps: is empty (list the factors to vary, or remove it)")
     if "grid" in doc and not grid:
@@ -304,8 +341,6 @@ def _validate(doc, source, sha256) -> Study:
     for f in FACTORS:
         if grid and f not in grid and f not in base:
             raise StudyError(f"grid.{f}: missing (give it in grid or in base)")
-
-    material = _material(doc["material"]) if "material" in doc else {}
 
     interface = _string(doc.get("interface", "no_slip"), "interface")
     if interface not in INTERFACES:
@@ -332,16 +367,39 @@ def _validate(doc, source, sha256) -> Study:
 
 
 def _material(doc) -> dict:
-    """The material block: a model and its fixed ratios (numbers; checked per point)."""
-    _keys(doc, "material", ("model",) + RATIOS)
+    """The material block: a model, perhaps C10_MPa, and its fixed coefficients, as ratios
+    to C10 or in MPa (numbers; checked per point)."""
+    _keys(doc, "material", ("model", "C10_MPa") + COEFFICIENTS)
     if "model" not in doc:
         raise StudyError(f"material.model: missing (one of {', '.join(MODELS)})")
     model = _string(doc["model"], "material.model")
     if model not in MODELS:
         raise StudyError(f"material.model: {model!r} must be one of {', '.join(MODELS)}")
     out = {"model": model}
-    out.update({r: _number(doc[r], f"material.{r}") for r in RATIOS if r in doc})
+    if "C10_MPa" in doc:
+        out["C10_MPa"] = _factor_value("C10_MPa", doc["C10_MPa"], "material.C10_MPa")
+    out.update({k: _number(doc[k], f"material.{k}") for k in COEFFICIENTS if k in doc})
     return out
+
+
+def _check_coefficients(material, sweeps, grid):
+    """Each coefficient once (as a ratio or in MPa, in the block or swept), and one in MPa
+    only if the model has it (a ratio is checked by the solver's Material)."""
+    model = material.get("model", "neo_hooke")
+    places = [(f"{group}.{k}", k) for group, keys in (("material", material),
+                                                       ("sweeps", sweeps), ("grid", grid))
+              for k in keys if k in COEFFICIENTS]
+    for place, k in places:
+        r = IN_MPA.get(k, k)
+        if k in IN_MPA and r != "D1_times_C10" and r not in _OF_MODEL[model]:
+            own = [n.replace("_over_C10", "_MPa") for n in _OF_MODEL[model]]
+            raise StudyError(f"{place}: not a coefficient of the {model} model (it has "
+                             f"{', '.join(['C10_MPa', *own, 'D1_per_MPa'])}; give material."
+                             f"model for another)")
+        other = [p for p, j in places if j != k and IN_MPA.get(j, j) == r]
+        if other:
+            raise StudyError(f"{place}: the same coefficient is given as {other[0]}; give each "
+                             "coefficient once, in MPa or as a ratio to C10")
 
 
 def material_of(study: Study, point: dict) -> Material:
@@ -353,6 +411,8 @@ def material_of(study: Study, point: dict) -> Material:
     try:
         m = Material(study.model, **ratios)
     except InputError as e:
+        if isinstance(e, UnstableMaterial) and study.in_MPa:    # the message in MPa
+            e = UnstableMaterial(e.material, e.mode, e.stretch, point["C10_MPa"][0])
         places = [point[r][1] for r in study.swept_ratios if r in point]
         where = places[0] if places else "material"
         raise StudyError(f"{where}: {e}" if not str(e).startswith(where) else str(e)) from None
@@ -371,18 +431,37 @@ def requested(study: Study):
     Points may repeat (every sweep passes through base).
     """
     base = {f: (v, f"base.{f}") for f, v in study.base.items()}
-    base.update({r: (v, f"material.{r}") for r, v in study.material.items() if r in RATIOS})
+    base.update({r: (v, f"material.{r}") for r, v in study.material.items()
+                 if r in COEFFICIENTS})
     if study.sweeps or not study.grid:
-        yield dict(base)
+        yield _with_ratios(base)
     for f, values in study.sweeps.items():
         for i, v in enumerate(values):
-            yield {**base, f: (v, f"sweeps.{f}[{i}]")}
+            yield _with_ratios({**base, f: (v, f"sweeps.{f}[{i}]")})
     if study.grid:
-        names = FACTORS + tuple(r for r in RATIOS if r in study.grid or r in base)
+        names = FACTORS + tuple(r for r in COEFFICIENTS if r in study.grid or r in base)
         axes = [[(v, f"grid.{f}[{i}]") for i, v in enumerate(study.grid[f])] if f in study.grid
                 else [base[f]] for f in names]
         for combo in itertools.product(*axes):
-            yield dict(zip(names, combo))
+            yield _with_ratios(dict(zip(names, combo)))
+
+
+def ratio_of(key: str, value: float, C10_MPa: float) -> float:
+    """The ratio to C10 of a coefficient given in MPa (D1 in 1/MPa: D1 C10), rounded to
+    _RATIO_DIGITS significant digits so that equal ratios share their FE paths."""
+    x = value * C10_MPa if key == "D1_per_MPa" else value / C10_MPa
+    return float(f"{x:.{_RATIO_DIGITS}g}")
+
+
+def _with_ratios(point: dict) -> dict:
+    """The point with the ratio of each coefficient given in MPa (placed where the MPa
+    value is), using the point's C10."""
+    C10 = point["C10_MPa"][0]
+    out = {k: v for k, v in point.items() if k not in IN_MPA}
+    for k, r in IN_MPA.items():
+        if k in point:
+            out[r] = (ratio_of(k, point[k][0], C10), point[k][1])
+    return out
 
 
 def _check_points(study: Study):
@@ -390,12 +469,11 @@ def _check_points(study: Study):
     (C10 R) within what the relaxation paths are built for (the solver's rules)."""
     seen = set()
     R = study.R_mm
-    if study.material and not study.swept_ratios:
-        material_of(study, {r: (v, f"material.{r}") for r, v in study.material.items()
-                            if r in RATIOS})
+    first = True
     for point in requested(study):
-        if study.swept_ratios:
+        if study.swept_ratios or (first and study.material):
             material_of(study, point)
+        first = False
         (t, t_place), (h, h_place) = point["t_over_R"], point["h_over_R"]
         (C10, c_place), (gamma, g_place) = point["C10_MPa"], point["gamma_J_m2"]
         check_gamma(gamma_hat(gamma, C10, R), GAMMA_MAX, g_place, f"{gamma:g} J/m^2",

@@ -47,7 +47,7 @@ from shell_adhesion.solver.material import NEO_HOOKE
 from shell_adhesion.solver.scaling import energy_mJ, force_N, gamma_hat, length_mm
 from shell_adhesion.solver.theory import eta_of
 
-from .config import FACTORS, KEYS, RATIOS, Outputs
+from .config import COEFFICIENTS, FACTORS, IN_MPA, KEYS, Outputs
 from .keys import solver_source_sha256
 from .plan import LADDER, Plan
 
@@ -119,11 +119,10 @@ def _material_attrs(plan: Plan, material) -> dict:
     text = material.coefficients(C10) if C10 is not None else material.coefficients()
     fixed = {f"material_{r}": v for r, v in study.material.items() if r != "model"}
     return dict(material_model=study.model,
-                material=f"{material.model} ({text})" if not plan.ratio_axes
+                material=text if not plan.ratio_axes    # text names the model
                 else f"{study.model} (swept: {', '.join(plan.ratio_axes)})",
                 title=f"{study.description or f'shell-adhesion study {study.name}'}; "
-                      f"material {study.model}"
-                      + (f" ({text})" if not plan.ratio_axes else ""),
+                      f"material " + (text if not plan.ratio_axes else study.model),
                 source=_global_attrs(plan, "")["source"].replace(
                     "incompressible neo-Hookean", f"{study.model} hyperelastic"),
                 **fixed)
@@ -154,6 +153,12 @@ def _build_swept(plan: Plan, served: dict, failed: dict, history: str) -> xr.Dat
     ds["reason"] = ds["reason"].where(ds["reason"].notnull(), "").astype(object)
     for n in names:
         ds[n].attrs = _attrs("1", _RATIO_NAMES[n])
+    for k in plan.study.in_MPa:         # the coefficients the file gives in MPa, as given
+        r = IN_MPA[k]
+        if r in names:
+            C10 = ds["C10"]
+            ds = ds.assign_coords({k: ds[r] / C10 if k == "D1_per_MPa" else ds[r] * C10})
+            ds[k].attrs = _attrs(*_MPA_NAMES[k])
     ds.attrs.update(_material_attrs(plan, plan.materials[combos[0]]))
     return ds
 
@@ -162,6 +167,12 @@ _RATIO_NAMES = {"C01_over_C10": "Mooney-Rivlin ratio C01 / C10",
                 "C20_over_C10": "Yeoh ratio C20 / C10", "C30_over_C10": "Yeoh ratio C30 / C10",
                 "Jm": "Gent limit Jm of I1bar - 3",
                 "D1_times_C10": "compressibility D1 C10 (0: incompressible)"}
+
+
+_MPA_NAMES = {"C01_MPa": ("MPa", "Mooney-Rivlin C01 (C01_over_C10 x C10)"),
+              "C20_MPa": ("MPa", "Yeoh C20 (C20_over_C10 x C10)"),
+              "C30_MPa": ("MPa", "Yeoh C30 (C30_over_C10 x C10)"),
+              "D1_per_MPa": ("1/MPa", "compressibility D1 (D1_times_C10 / C10)")}
 
 
 def _build(plan: Plan, served: dict, failed: dict, history: str, material) -> xr.Dataset:
@@ -437,13 +448,13 @@ def study_of(ds: xr.Dataset) -> dict:
         if k in out:
             out[k] = float(out[k])
     for group, prefix in _GROUPS.items():
-        values = {f: a[prefix + f] for f in FACTORS + RATIOS if prefix + f in a}
+        values = {f: a[prefix + f] for f in FACTORS + COEFFICIENTS if prefix + f in a}
         if values:          # the study file leaves out an empty group
             out[group] = ({f: float(v) for f, v in values.items()} if group == "base" else
                           {f: [float(x) for x in np.atleast_1d(v)] for f, v in values.items()})
     if "material_model" in a:
         out["material"] = {"model": str(a["material_model"]),
-                           **{r: float(a["material_" + r]) for r in RATIOS
+                           **{r: float(a["material_" + r]) for r in COEFFICIENTS
                               if "material_" + r in a}}
     out["outputs"] = {f.name: bool(a[_OUTPUTS + f.name]) for f in fields(Outputs)
                       if _OUTPUTS + f.name in a}

@@ -6,11 +6,15 @@ state), and returns its Axes (an array of Axes for several panels).  Colours: th
 family.  Shell-level figures are drawn for the
 study's base point unless `at` names other coordinates (C10 MPa, t_over_R, h_over_R,
 gamma J/m^2).  Units: lengths mm, forces N, energies mJ, stresses MPa; P > 0
-compression, delta > 0 approach.  Fig. 5 rebuilds U_E(a, delta) from the stored
+compression, delta > 0 approach.  A cube that sweeps a material ratio (a dimension such as
+C01_over_C10) draws one curve per material value, labelled, in the sweep figures (Fig. 6)
+and in `fig_materials` (loading curves and pull-off against the ratio); the shell-level
+figures (Figs. 2 to 5) are drawn for its base solid (`products.base_material`).  Fig. 5 rebuilds U_E(a, delta) from the stored
 relaxation curves with `solver.energy` (interpolation only).
 
     shell-adhesion plot results/paper.nc --out results/figures
 """
+import itertools
 from pathlib import Path
 
 import numpy as np
@@ -25,6 +29,7 @@ from shell_adhesion.solver.energy import (energy_surface, total_energy_fixed_gri
 from shell_adhesion.solver.theory import jkr_P_star_N, shell_law_scale_N
 
 from .analysis import along, base_point, eta_fit
+from .dataset import DIMS
 
 SWEEPS = (("C10", "C10 [MPa]"), ("t_over_R", "t/R [1]"), ("h_over_R", "h/R [1]"),
           ("gamma", "gamma [J/m$^2$]"))
@@ -100,12 +105,48 @@ def figure_of(axes) -> Figure:
     return np.ravel(np.asarray(axes, dtype=object))[0].figure
 
 
+def materials(ds) -> list:
+    """[(label, cube)]: the cube at each value of its swept material ratios (dimensions
+    besides DIMS), labelled e.g. "C01/C10 = 0.2"; [(None, ds)] if it sweeps none."""
+    names = [d for d in ds["status"].dims if d not in DIMS]
+    if not names:
+        return [(None, ds)]
+    out = []
+    for values in itertools.product(*(ds[n].values for n in names)):
+        at = dict(zip(names, (float(v) for v in values)))
+        out.append((_ratios_label(at), ds.sel(at)))
+    return out
+
+
+def _ratios_label(at: dict) -> str:
+    return ", ".join(f"{_RATIO_LABELS.get(n, n)} = {v:g}" for n, v in at.items())
+
+
+def _base_and_others(ds):
+    """(label, cube) of the base solid (`products.base_material`), and [(label, cube)] of
+    the other swept solids; (None, ds, []) for a cube that sweeps no ratio."""
+    from .products import base_material
+    solids = materials(ds)
+    if solids[0][0] is None:
+        return None, ds, []
+    base = base_material(ds)
+    names = [d for d in ds["status"].dims if d not in DIMS]
+    is_base = [all(float(m[n]) == float(base[n]) for n in names) for _, m in solids]
+    k = is_base.index(True)
+    return solids[k][0], solids[k][1], solids[:k] + solids[k + 1:]
+
+
+_RATIO_LABELS = {"C01_over_C10": "C01/C10", "C20_over_C10": "C20/C10",
+                 "C30_over_C10": "C30/C10", "D1_times_C10": "D1 C10"}
+
+
 def _title(ds, p, with_gamma=True):
+    from .tables import material_label
     R = float(ds["R"])
     s = (f"R = {R:g} mm, t = {p['t_over_R'] * R:g} mm, h = {p['h_over_R'] * R:g} mm, "
          f"C10 = {p['C10']:g} MPa")
     s = s + (f", gamma = {p['gamma']:g} J/m$^2$" if with_gamma else "")
-    return s + (f"; {ds.attrs['material']}" if "material" in ds.attrs else "")
+    return s + (f"; {material_label(ds)[0]}" if "material" in ds.attrs else "")
 
 
 def _section(ds, j, shell):
@@ -353,16 +394,25 @@ def fig_contact_radius(ds, axes=None):
     _need(ds, "a_eq_mm", "P_eq")
     _any_ok(ds)
     p = base_point(ds)
+    solids = materials(ds)
     axes, new = _axes(axes, 4, (10, 8), nrows=2, ncols=2)
     for ax, (dim, label) in zip(axes, SWEEPS):
-        values = along(ds, "P_star", dim)[dim].values
-        for c, v in zip(_colours(len(values)), values):
+        values = np.unique(np.concatenate([along(m, "P_star", dim)[dim].values
+                                           for _, m in solids]))
+        for i, (c, v) in enumerate(zip(_colours(len(values)), values)):
             q = dict(p, **{dim: float(v)})
-            P = ds["P_eq"].sel(q)
-            a = P["a_eq_mm"].values
-            keep = ~np.isnan(a)
-            ax.plot(P.values[keep], a[keep], color=c, lw=1.2, label=_value_label(dim, v))
-            ax.plot(float(ds["P_star"].sel(q)), float(ds["a_star"].sel(q)), "o", color=c)
+            for j, (name, m) in enumerate(solids):
+                if str(m["status"].sel(q).values) != "ok":
+                    continue
+                P = m["P_eq"].sel(q)
+                a = P["a_eq_mm"].values
+                keep = ~np.isnan(a)
+                # colour: the swept value; line style: the material (labelled once each)
+                text = ", ".join(t for t, show in ((_value_label(dim, v), j == 0),
+                                                   (name, i == 0 and name)) if show)
+                ax.plot(P.values[keep], a[keep], color=c, lw=1.2,
+                        ls=_STYLES[j % len(_STYLES)], label=text or None)
+                ax.plot(float(m["P_star"].sel(q)), float(m["a_star"].sel(q)), "o", color=c)
         ax.set_xlabel("rim force P [N] (tension < 0)")
         ax.set_ylabel("contact radius a [mm]")
         ax.set_title(f"sweep of {label}" if len(values) > 1 else f"{label}: not swept",
@@ -373,6 +423,9 @@ def fig_contact_radius(ds, axes=None):
                                  "fixed-load pull-off (P*, a*); others at the base point",
                                  fontsize=10)
     return axes
+
+
+_STYLES = ("-", "--", ":", "-.", (0, (5, 1, 1, 1)), (0, (1, 3)))
 
 
 def _value_label(dim, v):
@@ -386,6 +439,7 @@ def fig_pull_off(ds, axes=None):
     linear-shell law eq. 3 with eta fitted over the evaluated shells (t/R < 1; all points
     if there are none).  Four Axes."""
     _any_ok(ds)
+    name, ds, others = _base_and_others(ds)     # eta is fitted for the base solid
     p = base_point(ds)
     R = float(ds["R"])
     shells = ds["t_over_R"] < 1                 # eq. 3 is a thin-shell law
@@ -393,13 +447,19 @@ def fig_pull_off(ds, axes=None):
     axes, new = _axes(axes, 4, (10, 8), nrows=2, ncols=2)
     ours, law_c = colormaps[CMAP]([0.3, 0.75])
     jkr_c = "k"
+    tones = colormaps[CMAP](np.linspace(0.05, 0.55, len(others) + 1)[1:])
     for ax, (dim, label) in zip(axes, SWEEPS):
+        for (other, m), tone in zip(others, tones):
+            Pm = along(m, "P_star", dim)
+            ax.plot(Pm[dim].values, -Pm.values, "s--", color=tone, ms=4, lw=1.0,
+                    label=f"|P*|, {other}")
         P = along(ds, "P_star", dim)
         x = P[dim].values
         q = [dict(p, **{dim: float(v)}) for v in x]
         jkr = [-jkr_P_star_N(R, c["gamma"]) for c in q]
         law = [fit.eta * shell_law_scale_N(R, c["t_over_R"] * R, c["C10"], c["gamma"]) for c in q]
-        ax.plot(x, -P.values, "o-", color=ours, label="|P*| (this study)")
+        ax.plot(x, -P.values, "o-", color=ours,
+                label="|P*| (this study)" if name is None else f"|P*|, {name} (base)")
         ax.plot(x, jkr, "--", marker="x", color=jkr_c, label="JKR 1.5 pi R gamma")
         ax.plot(x, law, ":", marker="+", color=law_c,
                 label=f"linear-shell law eq. 3, eta = {fit.eta:.2f} (fit over {fit.n} cases)")
@@ -457,6 +517,62 @@ def fig_von_mises(ds, at=None, axes=None):
     return axes
 
 
+def fig_materials(ds, axes=None):
+    """The swept solids at the base shell: (a) the loading curves P(delta), one per
+    material value, (b) the pull-off forces P* and P_dagger and (c) the pull-off
+    displacements delta_dagger and delta* against the first swept ratio (one line per
+    value of the others).  Three Axes; MissingData for a cube that sweeps no ratio."""
+    names = [d for d in ds["status"].dims if d not in DIMS]
+    if not names:
+        raise MissingData("the study sweeps no material ratio")
+    _any_ok(ds)
+    p = base_point(ds)
+    shell = _shell(ds, p)
+    solids = materials(ds)
+    axes, new = _axes(axes, 3, (14, 4.4), ncols=3)
+    a_ld, a_P, a_d = axes
+    if "loading_P" in ds:
+        for (name, m), c in zip(solids, _colours(len(solids))):
+            ld = m["loading_delta_mm"].sel(shell).values
+            lP = m["loading_P"].sel(C10=p["C10"], **shell).values
+            keep = ~np.isnan(ld) & ~np.isnan(lP)
+            a_ld.plot(ld[keep], lP[keep], color=c, lw=1.2, label=name)
+        _legend(a_ld, fontsize=7, loc="upper left")
+    else:
+        a_ld.text(0.5, 0.5, "no loading curves stored", ha="center", transform=a_ld.transAxes)
+    a_ld.set_xlabel("rim displacement delta [mm] (approach > 0)")
+    a_ld.set_ylabel("rim force P [N] (compression > 0)")
+    a_ld.set_title("(a) loading without adhesion", fontsize=10)
+    first, rest = names[0], names[1:]
+    at = {d: v for d, v in p.items()}
+    point = ds.sel(at)
+    lines = [dict(zip(rest, (float(v) for v in values)))
+             for values in itertools.product(*(ds[n].values for n in rest))]
+    for k, sel in enumerate(lines):
+        q = point.sel(sel)
+        text = _ratios_label(sel)
+        ok = q["status"] == "ok"
+        x = q[first].values[ok.values]
+        suffix = f" ({text})" if text else ""
+        for ax, var, mark, what in ((a_P, "P_star", "o-", "P* (fixed load)"),
+                                    (a_P, "P_dagger", "s--", "P$^\\dagger$ (fixed grips)"),
+                                    (a_d, "delta_dagger", "o-", "$\\delta^\\dagger$ (fixed grips)"),
+                                    (a_d, "delta_star", "s--", "$\\delta$* (fixed load)")):
+            ax.plot(x, q[var].values[ok.values], mark, color=f"C{k}", label=what + suffix)
+    axis = _RATIO_LABELS.get(first, first)
+    for ax, ylabel, t in ((a_P, "pull-off force [N]", "(b) pull-off forces"),
+                          (a_d, "rim displacement at pull-off [mm]", "(c) pull-off displacements")):
+        ax.set_xlabel(f"{axis} [{ds[first].attrs.get('units', '1')}]")
+        ax.set_ylabel(ylabel)
+        ax.set_title(t, fontsize=10)
+        _legend(ax, fontsize=7)
+    if new:
+        figure_of(axes).suptitle("Swept material at the base shell: "
+                                 + _title(ds, p).split("; ")[0]
+                                 + f"; {ds.attrs.get('material_model', '')}", fontsize=10)
+    return axes
+
+
 FIGURES = {
     "fig2_von_mises": fig_von_mises,
     "fig3_profiles": fig_profiles,
@@ -465,6 +581,8 @@ FIGURES = {
     "fig6a_contact_radius": fig_contact_radius,
     "fig6b_pull_off": fig_pull_off,
 }
+MATERIAL_FIGURES = {"fig7_materials": fig_materials}   # a cube that sweeps a material ratio
+SHELL_FIGURES = ("fig2_von_mises", "fig3_profiles", "fig4_load_relaxation", "fig5_energy")
 
 
 def _save(fig: Figure, path: Path, dpi):
@@ -476,13 +594,18 @@ def _save(fig: Figure, path: Path, dpi):
 def write_figures(ds, out_dir, formats=("png", "pdf"), dpi=150) -> tuple:
     """Draw every figure the cube has data for into `out_dir`: (written paths,
     {figure: reason} for those skipped).  Raster formats at `dpi` (the default, used by
-    `shell-adhesion run`, is above MIN_DPI, the least for a figure meant to be read)."""
+    `shell-adhesion run`, is above MIN_DPI, the least for a figure meant to be read).
+    The shell-level figures of a cube that sweeps a material ratio are drawn for its base
+    solid, and MATERIAL_FIGURES only for such a cube."""
+    from .products import base_material
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     written, skipped = [], {}
-    for name, draw in FIGURES.items():
+    swept = any(d not in DIMS for d in ds["status"].dims)
+    base = base_material(ds) if swept else ds
+    for name, draw in {**FIGURES, **(MATERIAL_FIGURES if swept else {})}.items():
         try:
-            fig = figure_of(draw(ds))
+            fig = figure_of(draw(base if name in SHELL_FIGURES else ds))
         except (MissingData, ValueError, KeyError) as e:
             skipped[name] = f"{type(e).__name__}: {e}"
             continue

@@ -20,6 +20,7 @@ import math
 
 from shell_adhesion.catalogue import fingerprint
 from shell_adhesion.solver.case import PathSet
+from shell_adhesion.solver.geometry import shown
 from shell_adhesion.solver.material import NEO_HOOKE, Material
 from shell_adhesion.solver.path import Settings
 from shell_adhesion.solver.scaling import gamma_hat
@@ -34,7 +35,7 @@ _REL_TOL = 1e-9
 def gamma_max_bucket(g: float) -> float:
     """The smallest value of the ladder 1, 2, 5 x 10^k that is >= g (to 1e-9 relative)."""
     if not g > 0:
-        raise ValueError(f"gamma/(C10 R) = {g!r} must be > 0")
+        raise ValueError(f"gamma/(C10 R) = {shown(g)} must be > 0")
     k = math.floor(math.log10(g)) - 1
     while True:
         for m in LADDER:

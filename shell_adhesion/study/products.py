@@ -47,8 +47,6 @@ def write_tables(ds: xr.Dataset, out_dir) -> list:
     written = []
     base = base_material(ds)
     for name, make, cube in (("cases", cases_table, ds), ("paper", comparison_table, base)):
-        if name == "paper" and ds.attrs.get("material_model", "neo_hooke") != "neo_hooke":
-            continue        # the paper's values are neo-Hookean
         table = make(cube)
         for fmt in FORMATS:
             written.append(write_text_atomic(out / f"{name}.{fmt}", render(table, fmt)))
@@ -79,7 +77,7 @@ def write_products(results_nc, formats=("png", "pdf")) -> Products:
     t1 = time.perf_counter()
     p.tables = write_tables(ds, tables_dir(path))
     t2 = time.perf_counter()
-    p.figures, p.skipped = write_figures(base_material(ds), figures_dir(path), formats)
+    p.figures, p.skipped = write_figures(ds, figures_dir(path), formats)
     t3 = time.perf_counter()
     p.seconds = dict(read=t1 - t0, tables=t2 - t1, figures=t3 - t2, total=t3 - t0)
     return p

@@ -64,8 +64,8 @@ def backend(fast: bool) -> str:
 class Factor:
     """A factorisation of K_ff: `solve(b)` for b over the free dofs."""
 
-    def __init__(self, solve, K, c, timer):
-        self._solve, self.K, self.c, self.timer = solve, K, c, timer
+    def __init__(self, solve, timer):
+        self._solve, self.timer = solve, timer
 
     def solve(self, b):
         t0 = time.perf_counter()
@@ -145,7 +145,7 @@ class LinearSolver:
                 lu = spla.splu(Kff, permc_spec="COLAMD")
             except RuntimeError as err:
                 raise SingularTangent(str(err)) from None
-        return Factor(lu.solve, K, c, self.timer)
+        return Factor(lu.solve, self.timer)
 
     # QDLDL of the whole pattern, prescribed dofs as identity rows
     def _identity_rows(self, c):
@@ -197,7 +197,7 @@ class LinearSolver:
                 self._failures = 0
             return xf
 
-        return Factor(_checked(solve, lambda: self._fallback(K, c)), K, c, self.timer)
+        return Factor(_checked(solve, lambda: self._fallback(K, c)), self.timer)
 
 
 class _Inaccurate(ArithmeticError):

@@ -8,7 +8,7 @@ Two factorisations of the same matrix:
   are done once per path and every later factorisation is numeric only.  QDLDL does not
   pivot: every solve is checked for finite values and the first solve of each
   factorisation for its backward error (below `BACKWARD_ERROR`); a factorisation that
-  fails is redone by SuperLU.
+  fails is redone by SuperLU, and after MAX_FAILURES in a row the path keeps to SuperLU.
 - "superlu": scipy's SuperLU of the free block (the fallback, and the only one when QDLDL
   cannot be imported or the fast solver is switched off).
 
@@ -26,6 +26,7 @@ try:
 except ImportError:       # the fast solver is optional: SuperLU does the work then
     qdldl = None
 
+MAX_FAILURES = 3          # consecutive QDLDL failures after which a path keeps to SuperLU
 BACKWARD_ERROR = 1e-9     # largest |K x - b| / (max|K_ij| |x| + |b|) (max norms) from QDLDL
 
 
@@ -63,8 +64,8 @@ def backend(fast: bool) -> str:
 class Factor:
     """A factorisation of K_ff: `solve(b)` for b over the free dofs."""
 
-    def __init__(self, solve, K, c, timer):
-        self._solve, self.K, self.c, self.timer = solve, K, c, timer
+    def __init__(self, solve, timer):
+        self._solve, self.timer = solve, timer
 
     def solve(self, b):
         t0 = time.perf_counter()
@@ -85,7 +86,7 @@ class LinearSolver:
         self.rows = np.repeat(np.arange(n), np.diff(indptr))
         self.cols = np.asarray(indices)
         self._qdldl = None
-        self._generation = 0
+        self._generation = self._failures = 0
         self._plan_key = self._rows_key = None
         if self.backend == "qdldl":
             # the upper triangle in CSC is the lower triangle of the symmetric CSR
@@ -102,16 +103,22 @@ class LinearSolver:
         t0 = time.perf_counter()
         try:
             if self.backend == "qdldl":
-                f = self._factor_qdldl(K, c)
-                if f is None:
-                    self.timer.fallbacks += 1
-                    f = self._factor_superlu(K, c)
+                f = self._factor_qdldl(K, c) or self._fallback(K, c)
             else:
                 f = self._factor_superlu(K, c)
         finally:
             self.timer.factor += time.perf_counter() - t0
         self.timer.factorisations += 1
         return f
+
+    def _fallback(self, K, c):
+        """SuperLU in place of a failed QDLDL factorisation (counted)."""
+        self.timer.fallbacks += 1
+        self._failures += 1
+        if self._failures >= MAX_FAILURES:   # this path's tangents need pivoting
+            self.backend = "superlu"
+            self.timer.backend = "qdldl+superlu"
+        return self._factor_superlu(K, c)
 
     # SuperLU of the free block
     def _plan(self, K, c):
@@ -138,7 +145,7 @@ class LinearSolver:
                 lu = spla.splu(Kff, permc_spec="COLAMD")
             except RuntimeError as err:
                 raise SingularTangent(str(err)) from None
-        return Factor(lu.solve, K, c, self.timer)
+        return Factor(lu.solve, self.timer)
 
     # QDLDL of the whole pattern, prescribed dofs as identity rows
     def _identity_rows(self, c):
@@ -187,26 +194,25 @@ class LinearSolver:
                                                          + np.abs(b).max()):
                     raise _Inaccurate
                 checked.append(True)
+                self._failures = 0
             return xf
 
-        return Factor(_checked(solve, lambda: self._factor_superlu(K, c), self.timer), K, c,
-                      self.timer)
+        return Factor(_checked(solve, lambda: self._fallback(K, c)), self.timer)
 
 
 class _Inaccurate(ArithmeticError):
     pass
 
 
-def _checked(solve, fallback, timer):
-    """solve, or (if a later right-hand side exposes an inaccurate factorisation) the
-    SuperLU factorisation's solve from then on."""
+def _checked(solve, fallback):
+    """solve, or (once a right-hand side exposes an inaccurate factorisation) the solve of
+    the factorisation `fallback()` returns, from then on."""
     state = {"solve": solve}
 
     def run(b):
         try:
             return state["solve"](b)
         except _Inaccurate:
-            timer.fallbacks += 1
             state["solve"] = fallback()._solve
             return state["solve"](b)
     return run

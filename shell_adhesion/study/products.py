@@ -45,10 +45,12 @@ def write_tables(ds: xr.Dataset, out_dir) -> list:
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     written = []
-    base = base_material(ds)
+    base = base_material(base_cavity(ds))
     for name, make, cube in (("cases", cases_table, ds), ("paper", comparison_table, base)):
         if name == "paper" and ds.attrs.get("material_model", "neo_hooke") != "neo_hooke":
             continue        # the paper's values are neo-Hookean
+        if name == "paper" and "cavity_mode" in ds.attrs:
+            continue        # and of an open shell
         table = make(cube)
         for fmt in FORMATS:
             written.append(write_text_atomic(out / f"{name}.{fmt}", render(table, fmt)))

@@ -190,6 +190,8 @@ def test_sealed_study_equals_solve_case(sealed_run):
     assert np.nanmax(p) > 0                 # the gas is compressed on loading
     again = make_plan(validate(dataset.study_of(ds)))   # the cube rebuilds the study
     assert [s.key for s in again.shells] == [s.key for s in make_plan(validate(STUDY)).shells]
+    assert ds.loading_V_mm3.attrs["units"] == ds.relaxation_V_mm3.attrs["units"] == "mm^3"
+    assert ds.relaxation_p_kPa.attrs["units"] == "kPa"
     assert (tmp / "results" / "sealed_tables" / "cases.md").exists()
     assert not (tmp / "results" / "sealed_tables" / "paper.md").exists()   # an open shell's
 
@@ -235,3 +237,16 @@ def test_pressure_sweep_equals_solve_case(tmp_path):
     # the inflated shell's apex bulged toward the plane before the first touch
     apex = ds.cavity_apex_uz_mm.sel(C10=C10, t_over_R=0.15, h_over_R=1.0)
     assert apex.sel(p_kPa=5.0).item() < apex.sel(p_kPa=2.0).item() < 0
+
+
+def test_sealed_cube_is_cf_and_its_units_read(sealed_run, tmp_path):
+    from test_cube import cf_high_priority_failures
+    ds, tmp = sealed_run
+    failures, result = cf_high_priority_failures(tmp / "results" / "sealed.nc", tmp_path)
+    assert result["high_priorities"]        # it did check
+    assert not failures, "\n".join(f"{name}: {m}" for name, msgs in failures for m in msgs)
+    pint = pytest.importorskip("pint")
+    ureg = pint.UnitRegistry()
+    for name in ("loading_V_mm3", "loading_p_kPa", "relaxation_V_mm3", "relaxation_p_kPa",
+                 "cavity_apex_uz_mm"):
+        ureg(ds[name].attrs["units"])       # raises on a unit pint cannot read

@@ -255,17 +255,18 @@ def _cavity_curves(plan: Plan, served: dict, C10: float) -> dict:
         for j, ps in at.items():
             V[j][:len(ps.loading_V)], p[j][:len(ps.loading_p)] = ps.loading_V, ps.loading_p
         L = (*S, "loading_state")
-        out["loading_V_mm3"] = (L, V * mm3, _attrs("mm3", "cavity volume V on loading"))
+        out["loading_V_mm3"] = (L, V * mm3, _attrs("mm^3", "cavity volume V on loading"))
         out["loading_p_kPa"] = (L, p * kPa, _attrs("kPa", "cavity gauge pressure p on loading"))
     if study.outputs.relaxation_curves:
         width = (max([len(r.delta) for ps in at.values() for r in ps.relaxations], default=0),)
         K = (*S, "relaxation", "relaxation_state")
-        for k, scale, units, what in (("V", mm3, "mm3", "cavity volume V"),
-                                      ("p", kPa, "kPa", "cavity gauge pressure p")):
+        for k, scale, name, what in (("V", mm3, "mm3", "cavity volume V"),
+                                     ("p", kPa, "kPa", "cavity gauge pressure p")):
             arr = _padded(shells, {j: [getattr(r, k) for r in ps.relaxations]
                                    for j, ps in at.items()}, width)
-            out[f"relaxation_{k}_{units}"] = (K, arr * scale, _attrs(
-                units, f"{what} along the relaxation at fixed contact radius"))
+            out[f"relaxation_{k}_{name}"] = (K, arr * scale, _attrs(
+                "mm^3" if k == "V" else "kPa",
+                f"{what} along the relaxation at fixed contact radius"))
     return out
 
 

@@ -623,6 +623,7 @@ def summary(outcome: Outcome, ds=None) -> str:
         f"study {p.study.name} ({p.study.source}): cube C10 {len(ax['C10_MPa'])} x t/R "
         f"{len(ax['t_over_R'])} x h/R {len(ax['h_over_R'])} x gamma {len(ax['gamma_J_m2'])}, "
         f"requested points: {len(p.points)}; interface {p.study.interface}, mesh {p.study.mesh}",
+        *_cavity_lines(p),
         f"FE path sets: {len(p.shells)} needed, {len(outcome.computed)} computed, "
         f"{len(outcome.reused)} reused, {len(outcome.failed)} failed "
         f"(catalogue {outcome.catalogue})",

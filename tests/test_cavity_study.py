@@ -136,6 +136,18 @@ def test_dry_run_says_each_C10_is_a_path_set(tmp_path):
                                           catalogue=tmp_path / "c")
 
 
+def test_run_dry_run_command_says_so(tmp_path, capsys):
+    path = tmp_path / "study.yaml"
+    path.write_text(GOOD + "cavity: {mode: pressure, p_kPa: 5}\n"
+                           "sweeps: {p_kPa: [2, 5], C10_MPa: [0.6]}\n")
+    code = main(["run", str(path), "--dry-run", "--catalogue", str(tmp_path / "c")])
+    out = capsys.readouterr().out
+    assert code == 0
+    assert "closed cavity (pressure)" in out
+    assert "one path set per C10 and p_kPa (3 sets for 1 t/R, h/R)" in out
+    assert not (tmp_path / "c").exists()
+
+
 # -- end to end ------------------------------------------------------------------------
 
 def reference(**cavity):

@@ -674,7 +674,8 @@ def _cavity_lines(plan: Plan) -> list:
             + (", p0/C10 and the gas exponent" if mode == "sealed" else "")
             + " are FE parameters, so a C10 sweep is not post-processing: one path set per "
               f"C10" + (" and p_kPa" if plan.cavity_axes else "")
-            + f" ({len(plan.shells)} sets for {shells} t/R, h/R)"]
+            + f" ({len(plan.shells)} set{'s' if len(plan.shells) != 1 else ''} for {shells} "
+              "t/R, h/R)"]
 
 
 def dry_run(study, catalogue=None, workers=None, scheduler=None) -> str:

@@ -20,6 +20,12 @@
     interface: no_slip          # or frictionless (default no_slip)
     mesh: default               # coarse, default or fine (default default)
     delta_max_over_R: 0.25      # deepest loading, delta / R (default 0.25)
+    cavity:                     # a rigid lid closes the cap (default: open)
+      mode: pressure            #   open, pressure (prescribed gauge p) or sealed (trapped gas)
+      p_kPa: 10                 #   pressure: gauge pressure, kPa (> 0 inflates); may be swept
+      p_atm_kPa: 101.325        #   pressure, sealed: ambient pressure, kPa (default 101.325)
+                                #   sealed: p0_kPa (gauge at sealing, default 0), gas_exponent
+                                #   (n of p V^n = const, >= 1, default 1 isothermal)
     outputs:
       equilibrium_curves: true  # a, delta, P along each equilibrium curve (default true)
       loading_curves: true      # the loading curve of each shell (default true)
@@ -40,6 +46,12 @@ between the requested points is a dimension of the cube (named as the ratio, wit
 values as a coordinate beside it when the file gives them in MPa).  Every requested solid is checked by the solver
 (coefficients of the model, Jm > 0, D1 >= 0, Drucker stability), its message prefixed with
 the place, e.g. ``sweeps.C20_over_C10[1]: material: yeoh (...) is unstable ...``.
+
+A closed cavity's pressures enter the FE problem divided by C10 (`solver.cavity.Cavity`), so
+with a closed cavity every C10 (and every p_kPa) is its own set of FE paths.  The gauge
+pressure p_kPa of `cavity: {mode: pressure}` may be a factor of `sweeps` or `grid` (a cube
+dimension); the cavity block gives its base value.  Every requested (C10, p_kPa) is checked
+by `study.case.cavity_of` (the `case` command's rules), named by its place in the file.
 
 The rules are the solver's, each in one place: R_mm and C10_MPa `solver.scaling.check_R`
 / `check_C10`, every requested shell `solver.geometry.check_cap` and `check_delta_max`,
@@ -79,7 +91,9 @@ _OF_MODEL = {"neo_hooke": (), "mooney_rivlin": ("C01_over_C10",),
 _RATIO_DIGITS = 12          # a ratio of MPa values is rounded so equal ratios share paths
 MESHES = ("coarse", "default", "fine")
 KEYS = ("name", "description", "R_mm", "base", "sweeps", "grid", "material", "interface", "mesh",
-        "delta_max_over_R", "outputs")
+        "delta_max_over_R", "outputs", "cavity")
+CAVITY_KEYS = ("mode", "p_kPa", "p0_kPa", "p_atm_kPa", "gas_exponent")
+CAVITY_FACTORS = ("p_kPa",)     # cavity parameters that sweeps and grid may vary
 OUTPUTS = ("equilibrium_curves", "loading_curves", "relaxation_curves", "deformed_states")
 MAX_BYTES = 1_000_000       # a study file is a few lines; refuse anything over 1 MB
 _STEM = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]{0,99}")
@@ -114,6 +128,7 @@ class Study:
     source: str = ""                # the file it came from
     sha256: str = ""                # of the file's bytes
     material: dict = field(default_factory=dict)   # model and fixed ratios ({}: neo-Hookean)
+    cavity: dict = field(default_factory=dict)     # the cavity block in kPa ({}: open)
 
     @property
     def model(self) -> str:
@@ -139,6 +154,11 @@ class Study:
         given = set(self.material) | set(self.sweeps) | set(self.grid)
         return tuple(k for k in IN_MPA if k in given)
 
+    @property
+    def swept_cavity(self) -> tuple:
+        """The cavity parameters the sweeps or the grid vary (cube dimensions)."""
+        return tuple(c for c in CAVITY_FACTORS if c in self.sweeps or c in self.grid)
+
     def as_dict(self) -> dict:
         """The validated study as plain data (for provenance)."""
         return dict(name=self.name, description=self.description, R_mm=self.R_mm,
@@ -146,7 +166,8 @@ class Study:
                     grid={k: list(v) for k, v in self.grid.items()}, interface=self.interface,
                     mesh=self.mesh, delta_max_over_R=self.delta_max_over_R,
                     outputs=asdict(self.outputs),
-                    **({"material": dict(self.material)} if self.material else {}))
+                    **({"material": dict(self.material)} if self.material else {}),
+                    **({"cavity": dict(self.cavity)} if self.cavity else {}))
 
 
 # -- reading ---------------------------------------------------------------------------
@@ -270,7 +291,7 @@ def _factor_value(factor, value, place) -> float:
 
 
 def _factor_lists(doc, place) -> dict:
-    _keys(doc, place, FACTORS + COEFFICIENTS, "factor")
+    _keys(doc, place, FACTORS + COEFFICIENTS + CAVITY_FACTORS, "factor")
     out = {}
     for factor, values in doc.items():
         fplace = _join(place, factor)
@@ -360,8 +381,14 @@ def _validate(doc, source, sha256) -> Study:
             flags[k] = v
         outputs = Outputs(**flags)
 
+    cavity = _cavity(doc["cavity"], sweeps, grid) if "cavity" in doc else {}
+    for c in CAVITY_FACTORS:
+        if c in sweeps and c not in cavity:
+            raise StudyError(f"cavity.{c}: missing (sweeps vary one factor around its base "
+                             "value, which the cavity block gives)")
+
     study = Study(name, R_mm, base, sweeps, grid, interface, mesh, delta_max, outputs,
-                  description, source, sha256, material)
+                  description, source, sha256, material, cavity=cavity)
     _check_points(study)
     return study
 
@@ -402,6 +429,47 @@ def _check_coefficients(material, sweeps, grid):
                              "coefficient once, in MPa or as a ratio to C10")
 
 
+def _cavity(doc, sweeps, grid) -> dict:
+    """The cavity block: a mode and its parameters in kPa (numbers; checked per point by
+    `cavity_at`)."""
+    _keys(doc, "cavity", CAVITY_KEYS)
+    if "mode" not in doc:
+        raise StudyError("cavity.mode: missing (one of open, pressure, sealed)")
+    out = {"mode": _string(doc["mode"], "cavity.mode")}
+    out.update({k: _number(doc[k], f"cavity.{k}") for k in CAVITY_KEYS[1:] if k in doc})
+    for c in CAVITY_FACTORS:
+        for group, values in (("sweeps", sweeps), ("grid", grid)):
+            if c in values and out["mode"] != "pressure":
+                raise StudyError(f"{group}.{c}: given without cavity.mode pressure "
+                                 f"(cavity.mode is {out['mode']})")
+    swept = [f"{g}.{r}" for g, v in (("sweeps", sweeps), ("grid", grid)) for r in COEFFICIENTS
+             if r in v]
+    if out["mode"] != "open" and swept:
+        raise StudyError(f"cavity.mode: {out['mode']} with a swept material ratio ({swept[0]}) "
+                         "is not supported (sweep the ratio with an open cavity, or fix it "
+                         "in the material block)")
+    return out
+
+
+def cavity_at(study: Study, point: dict):
+    """The dimensionless cavity (`solver.cavity.Cavity`, pressures / C10) of a requested
+    point ({factor: (value, place)}); StudyError naming the place when a rule fails."""
+    from .case import cavity_of     # study.case reads the cube's names: import when used
+    if not study.cavity:
+        from shell_adhesion.solver.cavity import OPEN
+        return OPEN
+    c = dict(study.cavity)
+    names = {k: f"cavity.{k}" for k in CAVITY_KEYS[1:]}
+    names["cavity"] = "cavity.mode"
+    for k in CAVITY_FACTORS:
+        if k in point:
+            c[k], names[k] = point[k]
+    try:
+        return cavity_of(c.pop("mode"), point["C10_MPa"][0], names=names, **c)
+    except InputError as e:     # the rules are in kPa: C10 only converts
+        raise StudyError(str(e)) from None
+
+
 def material_of(study: Study, point: dict) -> Material:
     """The solid of a requested point ({factor: (value, place)}); StudyError naming the
     place of the swept ratio (or `material`) when the solver refuses it."""
@@ -433,13 +501,15 @@ def requested(study: Study):
     base = {f: (v, f"base.{f}") for f, v in study.base.items()}
     base.update({r: (v, f"material.{r}") for r, v in study.material.items()
                  if r in COEFFICIENTS})
+    base.update({c: (v, f"cavity.{c}") for c, v in study.cavity.items() if c in CAVITY_FACTORS})
     if study.sweeps or not study.grid:
         yield _with_ratios(base)
     for f, values in study.sweeps.items():
         for i, v in enumerate(values):
             yield _with_ratios({**base, f: (v, f"sweeps.{f}[{i}]")})
     if study.grid:
-        names = FACTORS + tuple(r for r in COEFFICIENTS if r in study.grid or r in base)
+        names = FACTORS + tuple(r for r in COEFFICIENTS + CAVITY_FACTORS
+                                if r in study.grid or r in base)
         axes = [[(v, f"grid.{f}[{i}]") for i, v in enumerate(study.grid[f])] if f in study.grid
                 else [base[f]] for f in names]
         for combo in itertools.product(*axes):
@@ -478,6 +548,10 @@ def _check_points(study: Study):
         (C10, c_place), (gamma, g_place) = point["C10_MPa"], point["gamma_J_m2"]
         check_gamma(gamma_hat(gamma, C10, R), GAMMA_MAX, g_place, f"{gamma:g} J/m^2",
                     f"with C10 = {C10:g} MPa ({c_place}) and R = {R:g} mm")
+        cavity = cavity_at(study, point)
+        if cavity.closed and t >= 1:
+            raise StudyError(f"cavity.mode: {cavity.mode} needs a shell (t/R < 1); a solid "
+                             f"cap ({t_place} = {t:g}) has no cavity")
         if (t, h) not in seen:
             seen.add((t, h))
             check_cap(t, h, t_place, h_place)

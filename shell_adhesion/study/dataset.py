@@ -31,6 +31,15 @@ pint's default registry alike.  The study is stored as plain attributes (R_mm, b
 sweep_gamma_J_m2, ..., see `study_attrs`), from which `study_of` rebuilds the study file's
 dictionary.
 
+A closed cavity (the study's ``cavity:`` block) makes every C10 (and every p_kPa) its own
+FE path set: the cube is then the cubes of each (C10[, p_kPa]) concatenated, so the per-shell
+and per-state variables (loading and relaxation curves, deformed states, fingerprints) gain
+the ``C10`` dimension (and ``p_kPa``, a dimension when swept).  It adds loading_V_mm3,
+loading_p_kPa, relaxation_V_mm3, relaxation_p_kPa (the enclosed volume and the gauge
+pressure along the curves), cavity_apex_uz_mm (the free pressurised apex's displacement
+before the first touch, z up) and the attributes cavity_mode, cavity_p_kPa (unless swept),
+cavity_p_atm_kPa, cavity_p0_kPa and cavity_gas_exponent (sealed).
+
 ``xarray.open_dataset("results/<name>.nc")`` is all a reader needs; the file passes the
 CF-1.8 compliance checker without a high-priority failure.
 """
@@ -43,11 +52,13 @@ import xarray as xr
 from shell_adhesion import solver
 from shell_adhesion.catalogue import write_atomic
 from shell_adhesion.solver import case
+from shell_adhesion.solver.cavity import P_ATM_KPA
 from shell_adhesion.solver.material import NEO_HOOKE
 from shell_adhesion.solver.scaling import energy_mJ, force_N, gamma_hat, length_mm
 from shell_adhesion.solver.theory import eta_of
 
-from .config import COEFFICIENTS, FACTORS, IN_MPA, KEYS, Outputs
+from .config import CAVITY_FACTORS, CAVITY_KEYS, COEFFICIENTS, FACTORS, IN_MPA, KEYS, \
+    Outputs
 from .keys import solver_source_sha256
 from .plan import LADDER, Plan
 
@@ -105,6 +116,8 @@ def build(plan: Plan, served: dict, failed: dict, history: str = "") -> xr.Datas
     if plan.ratio_axes:
         return _build_swept(plan, served, failed, history)
     material = plan.shells[0].material if plan.shells else NEO_HOOKE
+    if plan.cavities:
+        return _build_cavity(plan, served, failed, history, material)
     served = {k[:2]: v for k, v in served.items() if len(k) == 2 or k[2] == material}
     failed = {k[:2]: v for k, v in failed.items() if len(k) == 2 or k[2] == material}
     ds = _build(plan, served, failed, history, material)
@@ -161,6 +174,106 @@ def _build_swept(plan: Plan, served: dict, failed: dict, history: str) -> xr.Dat
             ds[k].attrs = _attrs(*_MPA_NAMES[k])
     ds.attrs.update(_material_attrs(plan, plan.materials[combos[0]]))
     return ds
+
+
+# -- closed cavities ---------------------------------------------------------------------
+
+def _build_cavity(plan: Plan, served: dict, failed: dict, history: str, material) -> xr.Dataset:
+    """A closed cavity: the cube of each (C10, swept cavity values) from its own path sets
+    (served keys (t/R, h/R, Material, Cavity)), concatenated along C10, then along the
+    swept cavity parameters (combinations not requested are NaN / "not requested")."""
+    names = tuple(plan.cavity_axes or ())
+    groups = {}
+    for C10, values in plan.cavity_groups():
+        sub = plan.for_cavity(C10, values)
+        cavity = sub.shells[0].cavity
+        pick = lambda d: {k[:2]: v for k, v in d.items()
+                          if len(k) > 3 and k[2] == material and k[3] == cavity}
+        here = pick(served)
+        cube = _build(sub, here, pick(failed), history, material)
+        cube = cube.assign(_cavity_curves(sub, here, C10))
+        per_C10 = sorted(v for v in cube.variables if "C10" not in cube[v].dims
+                         and ({"t_over_R", "h_over_R"} & set(cube[v].dims)))
+        groups.setdefault(values, []).append(cube)
+    concat = dict(join="outer", data_vars="all", compat="equals", combine_attrs="override")
+    curve_coords = [c for c in ("loading_delta_mm", "relaxation_a_mm", "relaxation_delta_mm")]
+    cubes = [xr.concat(g, dim="C10", coords=[c for c in curve_coords if c in g[0].coords],
+                       **concat) for g in groups.values()]
+    if names:
+        C10_attrs, gh_attrs = cubes[0]["C10_MPa"].attrs, cubes[0]["gamma_hat"].attrs
+        cubes = [c.drop_vars(["C10_MPa", "gamma_hat"]) for c in cubes]
+        listed = [c for c in curve_coords + ["a_eq_mm"] if c in cubes[0].coords]
+        dim = xr.Variable(names, np.array([v[0] for v in groups], dtype=float),
+                          _attrs("kPa", "prescribed gauge pressure p in the cavity "
+                                        "(> 0 inflates)"))
+        ds = xr.concat(cubes, dim=xr.DataArray(dim, dims=names, name=names[0]),
+                       coords=listed, **concat)
+        C10s = ds["C10"].values
+        ds = ds.assign_coords(
+            C10_MPa=("C10", C10s, C10_attrs),
+            gamma_hat=(("C10", "gamma"), gamma_hat(ds["gamma"].values[None, :],
+                                                   C10s[:, None], plan.study.R_mm), gh_attrs))
+        for k, fill in (("status", "not requested"), ("reason", "")):
+            attrs = ds[k].attrs
+            ds[k] = ds[k].where(ds[k].notnull(), fill).astype(object)
+            ds[k].attrs = attrs
+    else:
+        ds = cubes[0]
+    ds.attrs.update(_cavity_attrs(plan))
+    # the per-shell variables that gained C10 (the figures read them at one C10)
+    ds.attrs["cavity_per_C10"] = " ".join(v for v in per_C10 if "C10" in ds[v].dims)
+    if material != NEO_HOOKE or plan.study.material:
+        ds.attrs.update(_material_attrs(plan, material))
+    return ds
+
+
+def _cavity_attrs(plan: Plan) -> dict:
+    """The cavity block in kPa with its defaults (a swept p_kPa is a coordinate)."""
+    block = plan.study.cavity
+    mode = block["mode"]
+    out = dict(cavity_mode=mode, cavity_p_atm_kPa=float(block.get("p_atm_kPa", P_ATM_KPA)))
+    if mode == "pressure" and "p_kPa" in block:
+        out["cavity_p_kPa"] = float(block["p_kPa"])
+    if mode == "sealed":
+        out.update(cavity_p0_kPa=float(block.get("p0_kPa", 0.0)),
+                   cavity_gas_exponent=float(block.get("gas_exponent", 1.0)))
+    return out
+
+
+def _cavity_curves(plan: Plan, served: dict, C10: float) -> dict:
+    """Volume and gauge pressure along the loading and relaxation curves, and the apex
+    displacement before the first touch, of the shells of one C10 (padded as _build)."""
+    study, R, ax = plan.study, plan.study.R_mm, plan.axes
+    index = {f: {v: i for i, v in enumerate(ax[f])} for f in ("t_over_R", "h_over_R")}
+    shells = (len(ax["t_over_R"]), len(ax["h_over_R"]))
+    at = {(index["t_over_R"][t], index["h_over_R"][h]): ps for (t, h), (_, ps) in served.items()}
+    mm3, kPa = R ** 3, C10 * 1e3
+    S = ("t_over_R", "h_over_R")
+    lift = np.full(shells, np.nan)
+    for j, ps in at.items():
+        lift[j] = -ps.stats.get("cavity_lift", np.nan) * R
+    out = {"cavity_apex_uz_mm": (S, lift, _attrs(
+        "mm", "apex displacement u_z of the free pressurised shell before the first touch "
+              "(z up: < 0 it bulged toward the plane); delta is measured from that touch"))}
+    if study.outputs.loading_curves:
+        n = max([len(ps.loading_delta) for ps in at.values()], default=0)
+        V, p = np.full(shells + (n,), np.nan), np.full(shells + (n,), np.nan)
+        for j, ps in at.items():
+            V[j][:len(ps.loading_V)], p[j][:len(ps.loading_p)] = ps.loading_V, ps.loading_p
+        L = (*S, "loading_state")
+        out["loading_V_mm3"] = (L, V * mm3, _attrs("mm^3", "cavity volume V on loading"))
+        out["loading_p_kPa"] = (L, p * kPa, _attrs("kPa", "cavity gauge pressure p on loading"))
+    if study.outputs.relaxation_curves:
+        width = (max([len(r.delta) for ps in at.values() for r in ps.relaxations], default=0),)
+        K = (*S, "relaxation", "relaxation_state")
+        for k, scale, name, what in (("V", mm3, "mm3", "cavity volume V"),
+                                     ("p", kPa, "kPa", "cavity gauge pressure p")):
+            arr = _padded(shells, {j: [getattr(r, k) for r in ps.relaxations]
+                                   for j, ps in at.items()}, width)
+            out[f"relaxation_{k}_{name}"] = (K, arr * scale, _attrs(
+                "mm^3" if k == "V" else "kPa",
+                f"{what} along the relaxation at fixed contact radius"))
+    return out
 
 
 _RATIO_NAMES = {"C01_over_C10": "Mooney-Rivlin ratio C01 / C10",
@@ -448,7 +561,8 @@ def study_of(ds: xr.Dataset) -> dict:
         if k in out:
             out[k] = float(out[k])
     for group, prefix in _GROUPS.items():
-        values = {f: a[prefix + f] for f in FACTORS + COEFFICIENTS if prefix + f in a}
+        values = {f: a[prefix + f] for f in FACTORS + COEFFICIENTS + CAVITY_FACTORS
+                  if prefix + f in a}
         if values:          # the study file leaves out an empty group
             out[group] = ({f: float(v) for f, v in values.items()} if group == "base" else
                           {f: [float(x) for x in np.atleast_1d(v)] for f, v in values.items()})
@@ -456,6 +570,10 @@ def study_of(ds: xr.Dataset) -> dict:
         out["material"] = {"model": str(a["material_model"]),
                            **{r: float(a["material_" + r]) for r in COEFFICIENTS
                               if "material_" + r in a}}
+    if "cavity_mode" in a:
+        out["cavity"] = {"mode": str(a["cavity_mode"]),
+                         **{k: float(a["cavity_" + k]) for k in CAVITY_KEYS[1:]
+                            if "cavity_" + k in a}}
     out["outputs"] = {f.name: bool(a[_OUTPUTS + f.name]) for f in fields(Outputs)
                       if _OUTPUTS + f.name in a}
     return {k: out[k] for k in KEYS if k in out}

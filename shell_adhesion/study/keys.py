@@ -6,7 +6,10 @@ the solver tolerances and relaxation rule, the stored layout, the package versio
 hash of the solver's source, and for a solid other than the incompressible neo-Hookean one
 its `solver.material.Material.as_dict()` (the ratios C01/C10, C20/C10, C30/C10, Jm and
 D1 C10: FE dimensions; neo-Hookean keys carry no material field, as before).  C10, R and
-gamma are not in it.  `relaxation_part` names one
+gamma are not in it, except
+through a closed cavity: its `solver.cavity.Cavity.as_dict()` (mode, p/C10, p0/C10,
+p_atm/C10, n) is the key's `cavity` field, so each C10 of a closed shell is its own set
+(open keys carry no cavity field, as before).  `relaxation_part` names one
 relaxation path of a set by its loaded start state, so a set killed half-way keeps its
 finished paths (catalogue parts stored under the set's fingerprint).
 """
@@ -18,6 +21,7 @@ from pathlib import Path
 from shell_adhesion import solver
 from shell_adhesion.catalogue import fingerprint
 from shell_adhesion.solver import case
+from shell_adhesion.solver.cavity import OPEN, Cavity
 from shell_adhesion.solver.material import NEO_HOOKE, Material
 from shell_adhesion.solver.mesh import mesh_spec
 from shell_adhesion.solver.path import Settings, State
@@ -34,7 +38,8 @@ def solver_source_sha256() -> str:
 
 
 def pathset_key(t_over_R, h_over_R, interface, mesh, delta_max_over_R, gamma_max_hat,
-                settings: Settings = None, material: Material = NEO_HOOKE) -> dict:
+                settings: Settings = None, material: Material = NEO_HOOKE,
+                cavity: Cavity = OPEN) -> dict:
     """Key of the FE path set of one dimensionless shell (validated names and values)."""
     settings = settings if settings is not None else Settings()
     key = {
@@ -54,6 +59,8 @@ def pathset_key(t_over_R, h_over_R, interface, mesh, delta_max_over_R, gamma_max
     }
     if material != NEO_HOOKE:
         key["material"] = material.as_dict()
+    if cavity.closed:       # pressures / C10 are FE parameters
+        key["cavity"] = cavity.as_dict()
     return key
 
 

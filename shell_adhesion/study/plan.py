@@ -14,18 +14,26 @@ C10 stays the scaling modulus, so a C10 sweep at fixed ratios still needs one se
 per shell.  The study's `material:` block gives that solid; a study that sweeps a ratio
 (`Study.swept_ratios`) plans one set per (t/R, h/R, ratios), and its points carry the swept
 ratios after the four factors.
+
+A closed cavity (the study's `cavity:` block, `solver.cavity.Cavity`) enters by its
+pressures divided by C10 (p/C10, p0/C10, p_atm/C10) and its gas exponent: they are FE
+dimensions and part of the shell's key, so a C10 sweep of a closed shell is NOT
+post-processing: the plan holds one set of paths per (t/R, h/R, C10[, p_kPa]).  A swept
+p_kPa (`Study.swept_cavity`) follows the four factors in the points; `Plan.cavities` gives
+each point's Cavity and `Plan.for_cavity` the part of the plan of one (C10, p_kPa).
 """
 from dataclasses import dataclass, replace
 import math
 
 from shell_adhesion.catalogue import fingerprint
 from shell_adhesion.solver.case import PathSet
+from shell_adhesion.solver.cavity import OPEN, Cavity
 from shell_adhesion.solver.geometry import shown
 from shell_adhesion.solver.material import NEO_HOOKE, Material
 from shell_adhesion.solver.path import Settings
 from shell_adhesion.solver.scaling import gamma_hat
 
-from .config import FACTORS, Study, material_of, requested
+from .config import FACTORS, Study, cavity_at, material_of, requested
 from .keys import pathset_key
 
 LADDER = (1, 2, 5)
@@ -55,6 +63,7 @@ class Shell:
     key: dict                   # catalogue key (gamma_max_hat: the ladder value)
     fingerprint: str
     material: Material = NEO_HOOKE
+    cavity: Cavity = OPEN       # what fills the cavity (pressures / C10)
 
     @property
     def gamma_max_hat(self) -> float:
@@ -72,6 +81,8 @@ class Plan:
     settings: Settings
     ratio_axes: dict = None     # swept ratio -> sorted tuple of its values (None: none swept)
     materials: dict = None      # swept ratio values (tuple) -> Material
+    cavities: dict = None       # closed cavity: point -> Cavity (None: open)
+    cavity_axes: dict = None    # swept cavity parameter (p_kPa) -> sorted tuple of values
 
     def shell(self, t_over_R, h_over_R, material: Material = None) -> Shell:
         for s in self.shells:
@@ -89,6 +100,31 @@ class Plan:
         shells = tuple(s for s in self.shells if s.material == m)
         return replace(self, points=points, shells=shells, ratio_axes=None, materials=None)
 
+    def for_cavity(self, C10_MPa, values: tuple = ()) -> "Plan":
+        """The part of a closed-cavity plan at one C10 and swept cavity `values` (one per
+        swept parameter): its points without those values, the shells of that Cavity, the
+        C10 axis reduced to C10_MPa (the other axes the whole plan's)."""
+        n = len(FACTORS)
+        points = tuple(p[:n] for p in self.points
+                       if p[0] == C10_MPa and tuple(p[n:]) == tuple(values))
+        cavity = self.cavities[next(p for p in self.points
+                                    if p[0] == C10_MPa and tuple(p[n:]) == tuple(values))]
+        shells = tuple(s for s in self.shells if s.cavity == cavity)
+        return replace(self, points=points, shells=shells, cavities=None, cavity_axes=None,
+                       axes={**self.axes, "C10_MPa": (C10_MPa,)})
+
+    def cavity_groups(self) -> list:
+        """The (C10, swept cavity values) of a closed-cavity plan, sorted."""
+        n = len(FACTORS)
+        return sorted({(p[0], tuple(p[n:])) for p in self.points})
+
+
+def shell_key(s: Shell) -> tuple:
+    """Key of a served set in a run's `served` map: (t/R, h/R, Material), and the Cavity
+    after them when it is closed (study.dataset.build reads it)."""
+    key = (s.t_over_R, s.h_over_R, s.material)
+    return key + (s.cavity,) if s.cavity.closed else key
+
 
 def make_plan(study: Study, settings: Settings = Settings(),
               material: Material = None) -> Plan:
@@ -97,29 +133,39 @@ def make_plan(study: Study, settings: Settings = Settings(),
     swept = study.swept_ratios
     solids = {}             # swept ratio values -> Material
     points = set()
+    cavities = {}           # point -> Cavity (closed cavities only)
     for p in requested(study):
         values = tuple(p[r][0] if r in p else getattr(NEO_HOOKE, r) for r in swept)
         if values not in solids:
             solids[values] = (material if material is not None and not swept
                               else material_of(study, p))
-        points.add(tuple(p[f][0] for f in FACTORS) + values)
+        point = (tuple(p[f][0] for f in FACTORS) + values
+                 + tuple(p[c][0] for c in study.swept_cavity))
+        points.add(point)
+        cavity = cavity_at(study, p)
+        if cavity.closed:
+            cavities[point] = cavity
     points = sorted(points)
     axes = {f: tuple(sorted({p[i] for p in points})) for i, f in enumerate(FACTORS)}
     need = {}
     for p in points:
         C10, t, h, gamma = p[:4]
         g = gamma_hat(gamma, C10, study.R_mm)
-        need[t, h, p[4:]] = max(need.get((t, h, p[4:]), 0.0), g)
+        at = (t, h, p[4:4 + len(swept)], cavities.get(p, OPEN))
+        need[at] = max(need.get(at, 0.0), g)
     shells = []
-    for (t, h, values), g in sorted(need.items()):
+    for (t, h, values, cavity), g in sorted(
+            need.items(), key=lambda kv: kv[0][:3] + (tuple(kv[0][3].as_dict().values()),)):
         m = solids[values]
         key = pathset_key(t, h, study.interface, study.mesh, study.delta_max_over_R,
-                          gamma_max_bucket(g), settings, m)
-        shells.append(Shell(t, h, g, key, fingerprint(key), m))
+                          gamma_max_bucket(g), settings, m, cavity)
+        shells.append(Shell(t, h, g, key, fingerprint(key), m, cavity))
     ratio_axes = ({r: tuple(sorted({p[4 + j] for p in points})) for j, r in enumerate(swept)}
                   if swept else None)
+    cavity_axes = ({c: tuple(sorted({p[4 + len(swept) + j] for p in points}))
+                    for j, c in enumerate(study.swept_cavity)} or None)
     return Plan(study, axes, tuple(points), tuple(shells), settings, ratio_axes,
-                solids if swept else None)
+                solids if swept else None, cavities=cavities or None, cavity_axes=cavity_axes)
 
 
 def restrict(ps: PathSet, delta_max: float) -> PathSet:

@@ -29,8 +29,10 @@ from shell_adhesion import solver
 from shell_adhesion.catalogue import Catalogue, default_dir
 from shell_adhesion.catalogue.atomic import clean_temporaries
 from shell_adhesion.catalogue.store import INDEX
-from shell_adhesion.solver.case import (loading_views, pathset_of, relaxation_starts,
-                                        relaxation_task, solve_loading, timing_stats)
+from shell_adhesion.solver.case import (cavity_lift, loading_views, pathset_of,
+                                        relaxation_starts, relaxation_task, solve_loading,
+                                        timing_stats)
+from shell_adhesion.solver.cavity import OPEN
 from shell_adhesion.solver.material import NEO_HOOKE
 from shell_adhesion.solver.path import LoadingPath, Settings
 from shell_adhesion.solver.pathset_dataset import (from_dataset, relaxation_from_dataset,
@@ -39,7 +41,7 @@ from shell_adhesion.solver.pathset_dataset import (from_dataset, relaxation_from
 from . import dataset, interrupt
 from .config import StudyError, load_study, validate
 from .keys import relaxation_part, solver_source_sha256
-from .plan import Plan, Shell, make_plan, restrict
+from .plan import Plan, Shell, make_plan, restrict, shell_key
 from .products import Products, write_products
 from .progress import Progress
 
@@ -85,27 +87,32 @@ def _check_source(source_sha256):
 
 
 def loading_task(t, h, interface, mesh, delta_max, settings, source_sha256=None,
-                 material=NEO_HOOKE):
-    """Loading path of one shell of `material`: (loading without displacement fields,
-    relaxation starts, info, loading views)."""
+                 material=NEO_HOOKE, cavity=OPEN):
+    """Loading path of one shell of `material` and `cavity`: (loading without displacement
+    fields, relaxation starts, info, loading views); a closed cavity's info holds
+    `cavity_lift` (solver.case.cavity_lift), which its relaxation tasks need."""
     _check_source(source_sha256)
     t0 = time.perf_counter()
-    d, loading = solve_loading(t, h, interface, mesh, delta_max, settings, material=material)
+    d, loading = solve_loading(t, h, interface, mesh, delta_max, settings, material=material,
+                               cavity=cavity)
     starts = relaxation_starts(loading, d.capmesh)
     light = LoadingPath(loading.interface,
                         tuple(replace(s, x=s.x[:0]) for s in loading.states), loading.timer)
     info = dict(dofs=int(d.ndof), elements=int(d.capmesh.mesh.nelements),
                 loading_s=time.perf_counter() - t0)
+    if cavity.closed:
+        info["cavity_lift"] = cavity_lift(d)
     return light, starts, info, loading_views(d, loading)
 
 
 def relax_task(t, h, interface, mesh, start, gamma_max, settings, source_sha256=None,
-               views=False, material=NEO_HOOKE):
-    """One relaxation path: (Relaxation, seconds); `views` keeps its profiles."""
+               views=False, material=NEO_HOOKE, cavity=OPEN, lift=0.0):
+    """One relaxation path: (Relaxation, seconds); `views` keeps its profiles; a closed
+    `cavity` needs its loading's `lift`."""
     _check_source(source_sha256)
     t0 = time.perf_counter()
     r = relaxation_task(t, h, interface, mesh, start, gamma_max, settings, views,
-                        material=material)
+                        material=material, cavity=cavity, lift=lift)
     return r, time.perf_counter() - t0
 
 
@@ -261,7 +268,7 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
     for s in shells:
         f = client.submit(loading_task, s.t_over_R, s.h_over_R, st.interface, st.mesh,
                           st.delta_max_over_R, plan.settings, s.key["solver_source"],
-                          s.material, pure=False,
+                          s.material, pure=False, cavity=s.cavity,
                           key=f"loading-{s.fingerprint[:12]}-{uuid.uuid4().hex[:8]}")
         owner[f] = (_Job(s, time.perf_counter()), None)
         pending.add(f)
@@ -303,7 +310,8 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
                      assembly_s=timer.assembly, linear_solve_s=timer.factor + timer.solve,
                      relaxation_s=job.seconds, timing=timing_stats(timer, job.relaxations))
         ps = pathset_of(s.t_over_R, s.h_over_R, st.interface, st.mesh, st.delta_max_over_R,
-                        s.gamma_max_hat, job.loading, job.relaxations, stats, job.views)
+                        s.gamma_max_hat, job.loading, job.relaxations, stats, job.views,
+                        cavity=s.cavity, lift=job.info.get("cavity_lift", 0.0))
         summary = dict(relaxations=len(ps.relaxations), loading_states=len(ps.loading_delta),
                        newton_iterations=stats["loading_newton_iterations"]
                        + stats["relaxation_newton_iterations"],
@@ -346,6 +354,7 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
                 g = client.submit(relax_task, s.t_over_R, s.h_over_R, st.interface, st.mesh,
                                   start, s.gamma_max_hat, plan.settings,
                                   s.key["solver_source"], views, s.material, pure=False,
+                                  cavity=s.cavity, lift=job.info.get("cavity_lift", 0.0),
                                   key=f"relax-{s.fingerprint[:12]}-{i}-{uuid.uuid4().hex[:8]}")
                 owner[g] = (job, (i, part))
                 pending.add(g)
@@ -487,7 +496,7 @@ def _execute(plan, out_dir, output, catalogue, scheduler, client, show, workers,
                 missing.append(s)
             else:
                 entry, ds = hit
-                served[s.t_over_R, s.h_over_R, s.material] = (
+                served[shell_key(s)] = (
                     entry.fingerprint, restrict(from_dataset(ds), study.delta_max_over_R))
                 reused.append(s.fingerprint)
         progress = Progress([("loading paths", len(missing), "shells"),
@@ -513,9 +522,9 @@ def _execute(plan, out_dir, output, catalogue, scheduler, client, show, workers,
                                 progress=progress)
         for s in missing:
             if s.fingerprint in tally.computed:
-                served[s.t_over_R, s.h_over_R, s.material] = (
+                served[shell_key(s)] = (
                     s.fingerprint, tally.computed[s.fingerprint])
-        failed_th = {(s.t_over_R, s.h_over_R, s.material): tally.failed[s.fingerprint]
+        failed_th = {shell_key(s): tally.failed[s.fingerprint]
                      for s in missing if s.fingerprint in tally.failed}
         history = (f"{time.strftime('%Y-%m-%dT%H:%M:%S%z')} shell-adhesion "
                    f"{solver.__version__}: run_study {study.source}")
@@ -627,6 +636,7 @@ def summary(outcome: Outcome, ds=None) -> str:
         f"study {p.study.name} ({p.study.source}): cube C10 {len(ax['C10_MPa'])} x t/R "
         f"{len(ax['t_over_R'])} x h/R {len(ax['h_over_R'])} x gamma {len(ax['gamma_J_m2'])}, "
         f"requested points: {len(p.points)}; interface {p.study.interface}, mesh {p.study.mesh}",
+        *_cavity_lines(p),
         f"FE path sets: {len(p.shells)} needed, {len(outcome.computed)} computed, "
         f"{len(outcome.reused)} reused, {len(outcome.failed)} failed "
         f"(catalogue {outcome.catalogue})",
@@ -667,6 +677,20 @@ def summary(outcome: Outcome, ds=None) -> str:
 
 # -- the plan without running it ---------------------------------------------------------
 
+def _cavity_lines(plan: Plan) -> list:
+    """What a closed cavity does to the plan (one line; none if open)."""
+    if not plan.cavities:
+        return []
+    mode = plan.study.cavity["mode"]
+    shells = len({(s.t_over_R, s.h_over_R) for s in plan.shells})
+    return [f"closed cavity ({mode}): p/C10, p_atm/C10"
+            + (", p0/C10 and the gas exponent" if mode == "sealed" else "")
+            + " are FE parameters, so a C10 sweep is not post-processing: one path set per "
+              "C10" + (" and p_kPa" if plan.cavity_axes else "")
+            + f" ({len(plan.shells)} set{'s' if len(plan.shells) != 1 else ''} for {shells} "
+              "t/R, h/R)"]
+
+
 def dry_run(study, catalogue=None, workers=None, scheduler=None) -> str:
     """What `run` would do, as text: the distinct FE problems, how many the catalogue
     holds (by its index), and an estimate of the time from the timings it recorded.
@@ -688,6 +712,7 @@ def dry_run(study, catalogue=None, workers=None, scheduler=None) -> str:
              f"{len(plan.shells)} distinct FE problems (path sets of one t/R, h/R each); "
              f"interface {study.interface}, mesh {study.mesh}, "
              f"delta_max/R {study.delta_max_over_R:g}",
+             *_cavity_lines(plan),
              f"catalogue {directory}: holds {held} of them, {todo} to compute"
              + (f" ({parts} relaxation paths kept from an interrupted run)" if parts else "")]
     if todo == 0:

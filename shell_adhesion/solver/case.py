@@ -199,15 +199,18 @@ class PathSet:
 
 
 def solve_loading(t: float, h: float, interface: str, mesh: str, delta_max: float,
-                  settings: Settings = Settings(), progress=None, material: Material = NEO_HOOKE):
+                  settings: Settings = Settings(), progress=None, material: Material = NEO_HOOKE,
+                  stop_at_limit: bool = False):
     """Discretisation and loading path of one dimensionless shell; a shell or delta_max
-    outside the supported domain (solver.geometry) raises InputError (a ValueError)."""
+    outside the supported domain (solver.geometry) raises InputError (a ValueError).
+    With `stop_at_limit`, a loading refused by the element-quality check or stalled keeps
+    its states so far and says why (`LoadingPath.stopped_by`); else it raises."""
     cap = Cap(t, h)
     check_delta_max(delta_max, h)
     check_interface(interface)
     cm = cap_mesh(cap, mesh_spec(mesh))
     d = discretise(cm, material=material)
-    return d, load(d, interface, delta_max, settings, progress)
+    return d, load(d, interface, delta_max, settings, progress, stop_at_limit)
 
 
 def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "default",
@@ -217,6 +220,10 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
                 material: Material = NEO_HOOKE) -> tuple:
     """Loading and relaxation paths of one shell: (PathSet, Discretisation, LoadingPath).
 
+    A loading that reaches the element-quality limit (or stalls) before delta_max stops
+    there and keeps its states; the set's stats say how far it got (`delta_reached`) and
+    why (`loading_stopped_by`), and the pull-offs are computed from the states it has.
+
     `progress(delta)` is called after each loading state, `path_progress(done, total)`
     after each relaxation path; `map` (e.g. an executor's map) runs the independent
     relaxation paths in parallel.  `material` (solver.material.Material, ratios to C10)
@@ -225,7 +232,8 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
     if not (isinstance(gamma_max, (int, float)) and math.isfinite(gamma_max) and gamma_max > 0):
         raise InputError(f"gamma_max: {gamma_max!r} must be a finite number > 0 (gamma/(C10 R))")
     t0 = time.perf_counter()
-    d, loading = solve_loading(t, h, interface, mesh, delta_max, settings, progress, material)
+    d, loading = solve_loading(t, h, interface, mesh, delta_max, settings, progress, material,
+                               stop_at_limit=True)
     t1 = time.perf_counter()
     relaxations = ()
     if relax_paths:
@@ -287,13 +295,15 @@ def provenance_stats(loading: LoadingPath, relaxations) -> dict:
     J_min, J_max, detF_min, distortion_min: over the loading states (refused beyond
     solver.quality's thresholds); relaxation_J_min, relaxation_J_max, relaxation_detF_min:
     over the relaxation paths (their held zone's edge is a crack tip, so J there is
-    reported, not refused).  inversion_delta, inversion_a: the first inversion, on loading
+    reported, not refused).  delta_reached: the deepest delta loaded; loading_stopped_by:
+    why the loading ended before delta_max ("" if it did not).  inversion_delta, inversion_a: the first inversion, on loading
     if the loading inverts, else on the relaxation path of smallest a that does
     (inversion_stage says which); inversion_delta_loading, inversion_a_loading: the
     loading's own; inverted_paths: how many relaxation paths inverted.
     """
     q = loading.quality
     out = dict(q.as_dict())
+    out.update(delta_reached=loading.delta_reached, loading_stopped_by=loading.stopped_by)
     if relaxations:
         out.update(relaxation_J_min=min(r.J_min for r in relaxations),
                    relaxation_J_max=max(r.J_max for r in relaxations),

@@ -278,14 +278,17 @@ def _solve(inp: CaseInput, progress: bool) -> CaseResult:
 
 def checks_dict(stats: dict, R_mm: float, C10_MPa: float) -> dict:
     """What the solver checked, with units: the worst element quality (pointwise J and
-    in-plane det F, dimensionless), where the contact zone inverted (mm; None: never) and
+    in-plane det F, dimensionless), how deep the loading got (mm) and why it stopped short
+    of delta_max (None: it did not), where the contact zone inverted (mm; None: never) and
     the largest gamma every pair of relaxation paths reached (J/m^2; None: no pair)."""
     quality = {k: stats.get(k) for k in ("J_min", "J_max", "detF_min", "distortion_min",
                                          "relaxation_J_min", "relaxation_J_max",
                                          "relaxation_detF_min") if k in stats}
     mm = lambda v: None if v is None else round(v * R_mm, 10)
     G = stats.get("G_max_reached")
-    return {"element_quality": quality,
+    return {"loading_reached": {"delta_reached_mm": mm(stats.get("delta_reached")),
+                                "stopped_by": stats.get("loading_stopped_by") or None},
+            "element_quality": quality,
             "inversion": {"stage": stats.get("inversion_stage"),
                           "inversion_delta_mm": mm(stats.get("inversion_delta")),
                           "inversion_a_mm": mm(stats.get("inversion_a")),

@@ -90,6 +90,10 @@ def _print_case(out):
     n = len(ld["delta_mm"])
     for i in sorted(set(list(range(0, n, max(1, n // 15))) + [n - 1])):
         print(f"{ld['delta_mm'][i]:12.4f} {ld['P_N'][i]:12.4f} {ld['a_mm'][i]:10.4f}")
+    reached = out["provenance"].get("loading_reached", {})
+    if reached.get("stopped_by"):
+        print(f"loading stopped at delta = {reached['delta_reached_mm']:.4f} mm, short of "
+              f"delta_max = {inp['delta_max_mm']:g} mm: {reached['stopped_by']}")
     for po in out.get("pull_off", []):
         fl, fg = po["fixed_load"], po["fixed_grips"]
         print(f"gamma = {po['gamma_J_m2']:g} J/m^2: fixed load P* = {fl['P_N']:.4f} N, "

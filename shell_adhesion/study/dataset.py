@@ -151,7 +151,10 @@ def _build_swept(plan: Plan, served: dict, failed: dict, history: str) -> xr.Dat
     status = ds["status"]
     ds["status"] = status.where(status.notnull(), "not requested").astype(object)
     ds["status"].attrs = status.attrs
-    ds["reason"] = ds["reason"].where(ds["reason"].notnull(), "").astype(object)
+    for k in ("reason", "loading_stopped_by"):
+        attrs = ds[k].attrs
+        ds[k] = ds[k].where(ds[k].notnull(), "").astype(object)
+        ds[k].attrs = attrs
     for n in names:
         ds[n].attrs = _attrs("1", _RATIO_NAMES[n])
     ds.attrs.update(_material_attrs(plan, plan.materials[combos[0]]))
@@ -200,9 +203,12 @@ def _build(plan: Plan, served: dict, failed: dict, history: str, material) -> xr
     n_load = max([len(ps.loading_delta) for _, ps in served.values()], default=0)
     values = {k: np.full(shape, np.nan) for k in (*_PULL_OFF, "eta")}
     curves = {k: np.full(shape + (n_point,), np.nan) for k in _CURVES}
+    inverted = np.full(shape, np.nan)
     for i, (v, c) in results.items():
         for k, x in v.items():
             values[k][i] = x
+        ps = served[ax["t_over_R"][i[1]], ax["h_over_R"][i[2]]][1]
+        inverted[i] = float(ps.inverted([v["a_star"] / R, v["a_dagger"] / R]).any())
         for k, x in c.items():
             curves[k][i][:len(x)] = x
 
@@ -233,6 +239,10 @@ def _build(plan: Plan, served: dict, failed: dict, history: str, material) -> xr
         "1", "catalogue fingerprint of the FE path set used (empty: none)"))
     data["gamma_max_hat"] = (("t_over_R", "h_over_R"), gmax, _attrs(
         "1", "largest gamma / (C10 R) the shell's FE paths serve"))
+    data.update(_checks(served, index, shells, C10s, R))
+    data["pull_off_inverted"] = (DIMS, inverted, _attrs(
+        "1", "pull-off point bridges or follows a contact-zone inversion (1 yes, 0 no, "
+             "NaN: not evaluated)"))
     if study.outputs.relaxation_curves:
         data.update(_relaxation_curves(served, index, shells, C10s, R))
     if study.outputs.deformed_states:
@@ -292,6 +302,54 @@ _INDEX_DIMS = {
     "triangle": "plotting triangle (8 per quadratic element)",
     "vertex": "vertex of a triangle",
 }
+
+
+# what the solver checked per shell: stats key -> (variable, units, long_name, kind)
+_CHECKS = {
+    "delta_reached": ("loading_delta_reached", "mm", "deepest rim displacement the loading "
+                      "reached (below delta_max: see loading_stopped_by)", "length"),
+    "J_min": ("J_min", "1", "smallest pointwise volume ratio J over the loading states", "1"),
+    "J_max": ("J_max", "1", "largest pointwise volume ratio J over the loading states", "1"),
+    "detF_min": ("detF_min", "1", "smallest in-plane det F over the loading states", "1"),
+    "distortion_min": ("distortion_min", "1", "smallest within-element det F ratio over "
+                       "the loading states", "1"),
+    "relaxation_J_min": ("relaxation_J_min", "1", "smallest pointwise J over the relaxation "
+                         "paths (reported, not refused: crack tip)", "1"),
+    "relaxation_J_max": ("relaxation_J_max", "1", "largest pointwise J over the relaxation "
+                         "paths (reported, not refused: crack tip)", "1"),
+    "inversion_delta": ("inversion_delta", "mm", "rim displacement where the contact zone's "
+                        "centre first left the plane (NaN: never)", "length"),
+    "inversion_a": ("inversion_a", "mm", "contact radius where the contact zone's centre "
+                    "first left the plane (NaN: never)", "length"),
+    "inverted_paths": ("inverted_paths", "1", "relaxation paths whose contact zone inverted "
+                       "(left out of the energy method)", "1"),
+}
+
+
+def _checks(served, index, shells, C10s, R) -> dict:
+    """Per shell: how far the loading got and why it stopped, the worst element quality,
+    where the contact zone inverted; with C10, the largest gamma every pair reached."""
+    values = {k: np.full(shells, np.nan) for k in _CHECKS}
+    stopped = np.full(shells, "", dtype=object)
+    G = np.full(shells, np.nan)
+    for (t, h), (_, ps) in served.items():
+        j = (index["t_over_R"][t], index["h_over_R"][h])
+        for k in _CHECKS:
+            v = ps.stats.get(k)
+            values[k][j] = np.nan if v is None else float(v)
+        stopped[j] = ps.stats.get("loading_stopped_by") or ""
+        g = ps.stats.get("G_max_reached")
+        G[j] = np.nan if g is None else float(g)
+    S = ("t_over_R", "h_over_R")
+    out = {}
+    for k, (name, units, long_name, kind) in _CHECKS.items():
+        v = length_mm(values[k], R) if kind == "length" else values[k]
+        out[name] = (S, v, _attrs(units, long_name))
+    out["loading_stopped_by"] = (S, stopped, _attrs(
+        "1", "why the loading stopped before delta_max (empty: it reached delta_max)"))
+    out["G_max_reached"] = (("C10", *S), G[None] * C10s[:, None, None] * R * 1e3, _attrs(
+        GAMMA_UNITS, "largest gamma every pair of neighbouring relaxation paths reached"))
+    return out
 
 
 def _padded(shells, items, width):

@@ -32,7 +32,7 @@ from shell_adhesion.catalogue.store import INDEX
 from shell_adhesion.solver.case import (loading_views, pathset_of, relaxation_starts,
                                         relaxation_task, solve_loading)
 from shell_adhesion.solver.material import NEO_HOOKE
-from shell_adhesion.solver.path import LoadingPath, Settings
+from shell_adhesion.solver.path import Settings
 from shell_adhesion.solver.pathset_dataset import (from_dataset, relaxation_from_dataset,
                                                    relaxation_to_dataset, to_dataset)
 
@@ -89,10 +89,10 @@ def loading_task(t, h, interface, mesh, delta_max, settings, source_sha256=None,
     relaxation starts, info, loading views)."""
     _check_source(source_sha256)
     t0 = time.perf_counter()
-    d, loading = solve_loading(t, h, interface, mesh, delta_max, settings, material=material)
+    d, loading = solve_loading(t, h, interface, mesh, delta_max, settings, material=material,
+                               stop_at_limit=True)
     starts = relaxation_starts(loading, d.capmesh)
-    light = LoadingPath(loading.interface,
-                        tuple(replace(s, x=s.x[:0]) for s in loading.states), loading.timer)
+    light = replace(loading, states=tuple(replace(s, x=s.x[:0]) for s in loading.states))
     info = dict(dofs=int(d.ndof), elements=int(d.capmesh.mesh.nelements),
                 loading_s=time.perf_counter() - t0)
     return light, starts, info, loading_views(d, loading)

@@ -61,12 +61,13 @@ def has_hole(state: State) -> bool:
 
 
 def relax_from(d: Discretisation, interface: str, start: State, gamma_max: float = GAMMA_MAX,
-               settings: Settings = Settings()) -> RelaxationPath:
+               settings: Settings = Settings(), progress=None) -> RelaxationPath:
     """Relax one loaded state until the estimated G exceeds G_SAFETY * gamma_max.
 
     The step comes from the flat-punch estimate, which needs a positive start stiffness;
     a start that softens (dP/ddelta <= 0: the shell is buckling under its contact) is
-    relaxed in steps of settings.step_max / STEPS_PER_PATH instead.
+    relaxed in steps of settings.step_max / STEPS_PER_PATH instead.  `progress(delta)` is
+    called after each state (it may raise to end the path, e.g. on a wall-time limit).
     """
     G_stop = G_SAFETY * gamma_max
     k0 = start.dP_ddelta
@@ -75,7 +76,12 @@ def relax_from(d: Discretisation, interface: str, start: State, gamma_max: float
         step = min(dP_total / k0 / STEPS_PER_PATH, settings.step_max)
     else:
         step = settings.step_max / STEPS_PER_PATH
-    return relax(d, interface, start, lambda s: flat_punch_G(start, s) >= G_stop, step, settings)
+    def stop(s):
+        if progress is not None:
+            progress(s.delta)
+        return flat_punch_G(start, s) >= G_stop
+
+    return relax(d, interface, start, stop, step, settings)
 
 
 @dataclass(frozen=True, eq=False)
@@ -327,9 +333,10 @@ def provenance_stats(loading: LoadingPath, relaxations) -> dict:
 
 def relaxation_task(t: float, h: float, interface: str, mesh: str, start: State,
                     gamma_max: float = GAMMA_MAX, settings: Settings = Settings(),
-                    views: bool = False, material: Material = NEO_HOOKE) -> Relaxation:
+                    views: bool = False, material: Material = NEO_HOOKE,
+                    progress=None) -> Relaxation:
     """One relaxation path as an independent task (rebuilds the discretisation); with
-    `views`, it keeps the path's profiles and stress map."""
+    `views`, it keeps the path's profiles and stress map; `progress` as in `relax_from`."""
     d = discretise(cap_mesh(Cap(t, h), mesh_spec(mesh)), material=material)
-    return Relaxation.of(relax_from(d, interface, start, gamma_max, settings),
+    return Relaxation.of(relax_from(d, interface, start, gamma_max, settings, progress),
                          d if views else None)

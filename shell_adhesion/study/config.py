@@ -19,6 +19,9 @@
     interface: no_slip          # or frictionless (default no_slip)
     mesh: default               # coarse, default or fine (default default)
     delta_max_over_R: 0.25      # deepest loading, delta / R (default 0.25)
+    error_bars: true            # a second, coarser mesh for error bars (default true)
+    task_timeout_s: 3600        # wall-time limit of one FE task, s (default 3600): a task
+                                #   past it is recorded as failed with its reason
     outputs:
       equilibrium_curves: true  # a, delta, P along each equilibrium curve (default true)
       loading_curves: true      # the loading curve of each shell (default true)
@@ -64,7 +67,8 @@ FACTORS = ("C10_MPa", "t_over_R", "h_over_R", "gamma_J_m2")
 RATIOS = ("C01_over_C10", "C20_over_C10", "C30_over_C10", "Jm", "D1_times_C10")
 MESHES = ("coarse", "default", "fine")
 KEYS = ("name", "description", "R_mm", "base", "sweeps", "grid", "material", "interface", "mesh",
-        "delta_max_over_R", "outputs")
+        "delta_max_over_R", "error_bars", "task_timeout_s", "outputs")
+TASK_TIMEOUT_S = 3600.0     # default wall-time limit of one FE task (a loading or one path)
 OUTPUTS = ("equilibrium_curves", "loading_curves", "relaxation_curves", "deformed_states")
 MAX_BYTES = 1_000_000       # a study file is a few lines; refuse anything over 1 MB
 _STEM = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]{0,99}")
@@ -99,6 +103,8 @@ class Study:
     source: str = ""                # the file it came from
     sha256: str = ""                # of the file's bytes
     material: dict = field(default_factory=dict)   # model and fixed ratios ({}: neo-Hookean)
+    error_bars: bool = True         # a second, coarser mesh gives each number's error bar
+    task_timeout_s: float = TASK_TIMEOUT_S   # wall-time limit of one FE task, s
 
     @property
     def model(self) -> str:
@@ -115,6 +121,7 @@ class Study:
                     base=dict(self.base), sweeps={k: list(v) for k, v in self.sweeps.items()},
                     grid={k: list(v) for k, v in self.grid.items()}, interface=self.interface,
                     mesh=self.mesh, delta_max_over_R=self.delta_max_over_R,
+                    error_bars=self.error_bars, task_timeout_s=self.task_timeout_s,
                     outputs=asdict(self.outputs),
                     **({"material": dict(self.material)} if self.material else {}))
 
@@ -325,8 +332,15 @@ def _validate(doc, source, sha256) -> Study:
             flags[k] = v
         outputs = Outputs(**flags)
 
+    error_bars = doc.get("error_bars", True)
+    if not isinstance(error_bars, bool):
+        raise StudyError(f"error_bars: {_short(error_bars)} must be true or false")
+    timeout = _number(doc.get("task_timeout_s", TASK_TIMEOUT_S), "task_timeout_s")
+    if not timeout > 0:
+        raise StudyError(f"task_timeout_s: {timeout:g} must be > 0 (seconds per FE task)")
+
     study = Study(name, R_mm, base, sweeps, grid, interface, mesh, delta_max, outputs,
-                  description, source, sha256, material)
+                  description, source, sha256, material, error_bars, timeout)
     _check_points(study)
     return study
 

@@ -469,7 +469,8 @@ def _global_attrs(plan: Plan, history: str) -> dict:
 # the study file's keys and the attributes that hold them (lists of numbers: arrays)
 _SCALAR_KEYS = {"name": "study_name", "description": "study_description", "R_mm": "R_mm",
                 "interface": "interface", "mesh": "mesh",
-                "delta_max_over_R": "delta_max_over_R"}
+                "delta_max_over_R": "delta_max_over_R", "error_bars": "error_bars",
+                "task_timeout_s": "task_timeout_s"}
 _GROUPS = {"base": "base_", "sweeps": "sweep_", "grid": "grid_"}
 _OUTPUTS = "output_"
 
@@ -479,6 +480,8 @@ def study_attrs(study: dict) -> dict:
     numbers and strings: study_name, R_mm, base_C10_MPa, sweep_gamma_J_m2 (array), ...,
     output_loading_curves (1 or 0)."""
     out = {a: study[k] for k, a in _SCALAR_KEYS.items() if k in study}
+    if "error_bars" in out:
+        out["error_bars"] = int(out["error_bars"])   # netCDF has no booleans
     for group, prefix in _GROUPS.items():
         for f, v in study.get(group, {}).items():
             out[prefix + f] = float(v) if group == "base" else np.asarray(v, dtype=float)
@@ -491,9 +494,11 @@ def study_of(ds: xr.Dataset) -> dict:
     `study.config.validate` turns it back into a Study."""
     a = ds.attrs
     out = {k: a[name] for k, name in _SCALAR_KEYS.items() if name in a}
-    for k in ("R_mm", "delta_max_over_R"):
+    for k in ("R_mm", "delta_max_over_R", "task_timeout_s"):
         if k in out:
             out[k] = float(out[k])
+    if "error_bars" in out:
+        out["error_bars"] = bool(out["error_bars"])
     for group, prefix in _GROUPS.items():
         values = {f: a[prefix + f] for f in FACTORS + RATIOS if prefix + f in a}
         if values:          # the study file leaves out an empty group

@@ -83,14 +83,31 @@ def _check_source(source_sha256):
             "restart the client process and the workers")
 
 
+class TaskTimeout(RuntimeError):
+    """A task ran past the study's task_timeout_s (checked after every converged state)."""
+
+
+def _deadline(timeout_s, what):
+    """progress(delta) callback raising TaskTimeout once `timeout_s` seconds have passed."""
+    if timeout_s is None:
+        return None
+    t0 = time.perf_counter()
+
+    def check(delta):
+        if time.perf_counter() - t0 > timeout_s:
+            raise TaskTimeout(f"{what} ran past task_timeout_s = {timeout_s:g} s "
+                              f"(at delta/R = {delta:.4g})")
+    return check
+
+
 def loading_task(t, h, interface, mesh, delta_max, settings, source_sha256=None,
-                 material=NEO_HOOKE):
+                 material=NEO_HOOKE, timeout_s=None):
     """Loading path of one shell of `material`: (loading without displacement fields,
-    relaxation starts, info, loading views)."""
+    relaxation starts, info, loading views).  TaskTimeout past `timeout_s` seconds."""
     _check_source(source_sha256)
     t0 = time.perf_counter()
-    d, loading = solve_loading(t, h, interface, mesh, delta_max, settings, material=material,
-                               stop_at_limit=True)
+    d, loading = solve_loading(t, h, interface, mesh, delta_max, settings,
+                               _deadline(timeout_s, "the loading"), material, stop_at_limit=True)
     starts = relaxation_starts(loading, d.capmesh)
     light = replace(loading, states=tuple(replace(s, x=s.x[:0]) for s in loading.states))
     info = dict(dofs=int(d.ndof), elements=int(d.capmesh.mesh.nelements),
@@ -99,12 +116,13 @@ def loading_task(t, h, interface, mesh, delta_max, settings, source_sha256=None,
 
 
 def relax_task(t, h, interface, mesh, start, gamma_max, settings, source_sha256=None,
-               views=False, material=NEO_HOOKE):
-    """One relaxation path: (Relaxation, seconds); `views` keeps its profiles."""
+               views=False, material=NEO_HOOKE, timeout_s=None):
+    """One relaxation path: (Relaxation, seconds); `views` keeps its profiles.
+    TaskTimeout past `timeout_s` seconds."""
     _check_source(source_sha256)
     t0 = time.perf_counter()
     r = relaxation_task(t, h, interface, mesh, start, gamma_max, settings, views,
-                        material=material)
+                        material=material, progress=_deadline(timeout_s, "a relaxation path"))
     return r, time.perf_counter() - t0
 
 
@@ -254,7 +272,7 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
     for s in shells:
         f = client.submit(loading_task, s.t_over_R, s.h_over_R, st.interface, st.mesh,
                           st.delta_max_over_R, plan.settings, s.key["solver_source"],
-                          s.material, pure=False,
+                          s.material, st.task_timeout_s, pure=False,
                           key=f"loading-{s.fingerprint[:12]}-{uuid.uuid4().hex[:8]}")
         owner[f] = (_Job(s, time.perf_counter()), None)
         pending.add(f)
@@ -338,7 +356,8 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
                         continue
                 g = client.submit(relax_task, s.t_over_R, s.h_over_R, st.interface, st.mesh,
                                   start, s.gamma_max_hat, plan.settings,
-                                  s.key["solver_source"], views, s.material, pure=False,
+                                  s.key["solver_source"], views, s.material,
+                                  st.task_timeout_s, pure=False,
                                   key=f"relax-{s.fingerprint[:12]}-{i}-{uuid.uuid4().hex[:8]}")
                 owner[g] = (job, (i, part))
                 pending.add(g)

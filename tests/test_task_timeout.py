@@ -44,7 +44,7 @@ def test_deadline_raises_after_the_limit():
 
 
 def test_timed_out_task_is_recorded_and_the_run_ends(tmp_path):
-    (tmp_path / "s.yaml").write_text(STUDY + "task_timeout_s: 1e-9\n")
+    (tmp_path / "s.yaml").write_text(STUDY + "task_timeout_s: 1e-9\nerror_bars: false\n")
     out = execute(tmp_path / "s.yaml", tmp_path / "results", catalogue=tmp_path / "cat",
                   progress=False, workers=1)
     assert out.exit_code == 1 and len(out.failed) == 1

@@ -43,6 +43,7 @@ import xarray as xr
 from shell_adhesion import solver
 from shell_adhesion.catalogue import write_atomic
 from shell_adhesion.solver import case
+from shell_adhesion.solver.error_bars import curve_error, error_bar
 from shell_adhesion.solver.material import NEO_HOOKE
 from shell_adhesion.solver.scaling import energy_mJ, force_N, gamma_hat, length_mm
 from shell_adhesion.solver.theory import eta_of
@@ -98,15 +99,17 @@ def build(plan: Plan, served: dict, failed: dict, history: str = "") -> xr.Datas
 
     served: (t/R, h/R[, Material]) -> (fingerprint, PathSet) for the shells with FE paths;
     failed: (t/R, h/R[, Material]) -> reason for the shells whose FE paths could not be
-    computed.  A study sweeping material ratios gets one more dimension per swept ratio
+    computed.  A key ending in "coarser" (after the Material) is a shell's error-bar
+    companion on the next coarser mesh (study.plan.served_key): its values give the
+    `<name>_error` variables (solver.error_bars; NaN where it has none).  A study sweeping material ratios gets one more dimension per swept ratio
     (named as in the study file, e.g. C01_over_C10): the cubes of each solid, concatenated
     (curves NaN-padded to the longest).
     """
     if plan.ratio_axes:
         return _build_swept(plan, served, failed, history)
     material = plan.shells[0].material if plan.shells else NEO_HOOKE
-    served = {k[:2]: v for k, v in served.items() if len(k) == 2 or k[2] == material}
-    failed = {k[:2]: v for k, v in failed.items() if len(k) == 2 or k[2] == material}
+    served = {_short(k): v for k, v in served.items() if len(k) == 2 or k[2] == material}
+    failed = {_short(k): v for k, v in failed.items() if len(k) == 2 or k[2] == material}
     ds = _build(plan, served, failed, history, material)
     if material != NEO_HOOKE or plan.study.material:
         ds.attrs.update(_material_attrs(plan, material))
@@ -138,8 +141,8 @@ def _build_swept(plan: Plan, served: dict, failed: dict, history: str) -> xr.Dat
     for values in combos:
         m = plan.materials[values]
         cubes.append(_build(plan.for_ratios(values),
-                            {k[:2]: v for k, v in served.items() if k[2] == m},
-                            {k[:2]: v for k, v in failed.items() if k[2] == m}, history, m))
+                            {_short(k): v for k, v in served.items() if k[2] == m},
+                            {_short(k): v for k, v in failed.items() if k[2] == m}, history, m))
     ds = xr.concat(cubes, dim="_material", join="outer", data_vars="all",
                    coords="different", compat="equals", combine_attrs="override")
     ds = ds.assign_coords({n: ("_material", np.array([v[j] for v in combos], dtype=float))
@@ -167,7 +170,21 @@ _RATIO_NAMES = {"C01_over_C10": "Mooney-Rivlin ratio C01 / C10",
                 "D1_times_C10": "compressibility D1 C10 (0: incompressible)"}
 
 
+def _short(key) -> tuple:
+    """(t/R, h/R) of a served key, with "coarser" kept for an error-bar companion."""
+    return key[:2] + tuple(key[3:])
+
+
+def _errors(values, coarser) -> dict:
+    """`<name>_error` of each pull-off value and eta from the coarser mesh's values."""
+    return {f"{k}_error": float(error_bar(v, coarser[k])) if coarser else np.nan
+            for k, v in values.items()}
+
+
 def _build(plan: Plan, served: dict, failed: dict, history: str, material) -> xr.Dataset:
+    coarser = {k[:2]: v for k, v in served.items() if len(k) == 3}
+    served = {k: v for k, v in served.items() if len(k) == 2}
+    failed = {k: v for k, v in failed.items() if len(k) == 2}
     study = plan.study
     R = study.R_mm
     ax = plan.axes
@@ -180,6 +197,12 @@ def _build(plan: Plan, served: dict, failed: dict, history: str, material) -> xr
             surfaces[th] = ps.surface()
         except Exception as e:      # too few usable paths to build G at all
             surface_errors[th] = f"energy surface: {type(e).__name__}: {e}"
+    coarser_surfaces = {}
+    for th, (_, ps) in coarser.items():
+        try:
+            coarser_surfaces[th] = ps.surface()
+        except Exception:           # no error bars for this shell
+            pass
 
     status = np.full(shape, "not requested", dtype=object)
     reason = np.full(shape, "", dtype=object)
@@ -196,12 +219,21 @@ def _build(plan: Plan, served: dict, failed: dict, history: str, material) -> xr
                 results[i] = _evaluate(served[t, h][1], surfaces[t, h], C10, R, t, gamma,
                                        material)
                 status[i] = "ok"
+                if plan.study.error_bars:
+                    try:
+                        c = _evaluate(coarser[t, h][1], coarser_surfaces[t, h], C10, R, t,
+                                      gamma, material)[0]
+                    except (KeyError, ValueError):   # not served, or out of its range
+                        c = None
+                    results[i][0].update(_errors(results[i][0], c))
             except ValueError as e:     # solver.energy.OutOfRange and gamma > gamma_max
                 status[i], reason[i] = "out of range", str(e)
 
     n_point = max([len(c["a_eq_mm"]) for _, c in results.values()], default=0)
     n_load = max([len(ps.loading_delta) for _, ps in served.values()], default=0)
-    values = {k: np.full(shape, np.nan) for k in (*_PULL_OFF, "eta")}
+    names = (*_PULL_OFF, "eta")
+    values = {k: np.full(shape, np.nan)
+              for k in names + (tuple(f"{n}_error" for n in names) if study.error_bars else ())}
     curves = {k: np.full(shape + (n_point,), np.nan) for k in _CURVES}
     inverted = np.full(shape, np.nan)
     for i, (v, c) in results.items():
@@ -215,6 +247,12 @@ def _build(plan: Plan, served: dict, failed: dict, history: str, material) -> xr
     data = {k: (DIMS, values[k], _attrs(u, ln)) for k, (u, ln, _) in _PULL_OFF.items()}
     data["eta"] = (DIMS, values["eta"], _attrs(
         "1", "eta of eq. 3: |P*| / [gamma^4 R^4 (1 - nu^2) / (E t^2)]^(1/3)"))
+    if study.error_bars:
+        for k in names:
+            units = _PULL_OFF[k][0] if k in _PULL_OFF else "1"
+            data[f"{k}_error"] = (DIMS, values[f"{k}_error"], _attrs(
+                units, f"discretisation error estimate of {k} (next coarser mesh, "
+                       "solver.error_bars; NaN: not available)"))
     data["status"] = (DIMS, status, _attrs(
         "1", "evaluation status of the point", comment="one of: " + "; ".join(STATUS)))
     data["reason"] = (DIMS, reason, _attrs("1", "why a point is not ok (empty when ok)"))
@@ -258,6 +296,18 @@ def _build(plan: Plan, served: dict, failed: dict, history: str, material) -> xr
             "N", "rim force P on loading without adhesion"))
         data["loading_U"] = (("C10", *L), energy_mJ(load["U"][None], c, R), _attrs(
             "mJ", "strain energy U on loading without adhesion"))
+        if study.error_bars:
+            err = np.full(shells + (n_load,), np.nan)
+            for (t, h), (_, ps) in served.items():
+                if (t, h) in coarser:
+                    cps = coarser[t, h][1]
+                    j = (index["t_over_R"][t], index["h_over_R"][h])
+                    n = len(ps.loading_delta)
+                    err[j][:n] = curve_error(ps.loading_delta, ps.loading_P,
+                                             cps.loading_delta, cps.loading_P)
+            data["loading_P_error"] = (("C10", *L), force_N(err[None], c, R), _attrs(
+                "N", "discretisation error estimate of the loading P (NaN: beyond the "
+                     "coarser mesh's loading)"))
 
     C10_attrs = _attrs("MPa", "neo-Hookean constant C10 (shear modulus / 2)")
     gamma_attrs = _attrs(GAMMA_UNITS, "work of adhesion gamma")

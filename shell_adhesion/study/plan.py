@@ -7,6 +7,8 @@ gamma / (C10 R) asked of it; that value is rounded up to the ladder 1, 2, 5 x 10
 studies with nearby values share their paths.  The catalogue may serve a key with a set
 that reaches further (larger delta_max or gamma_max); `restrict` cuts such a set back to
 the requested delta_max, so the results do not depend on what else the catalogue holds.
+With error bars (the study's default), each shell has a companion on the next coarser mesh
+(`Plan.error_shells`): a set of its own, keyed and stored like any other.
 
 Another solid (`solver.material.Material`) enters the plan by its ratios to C10 (C01/C10,
 C20/C10, C30/C10, Jm, D1 C10): they are FE dimensions and part of every shell's key, while
@@ -21,6 +23,7 @@ import math
 from shell_adhesion.catalogue import fingerprint
 from shell_adhesion.solver.case import PathSet
 from shell_adhesion.solver.material import NEO_HOOKE, Material
+from shell_adhesion.solver.mesh import coarser_mesh
 from shell_adhesion.solver.path import Settings
 from shell_adhesion.solver.scaling import gamma_hat
 
@@ -71,6 +74,19 @@ class Plan:
     settings: Settings
     ratio_axes: dict = None     # swept ratio -> sorted tuple of its values (None: none swept)
     materials: dict = None      # swept ratio values (tuple) -> Material
+    error_shells: tuple = ()    # each shell on the next coarser mesh (error bars), same order
+
+    @property
+    def all_shells(self) -> tuple:
+        """The FE path sets to serve: the shells, then their error-bar companions."""
+        return self.shells + self.error_shells
+
+
+def served_key(s: Shell, plan: Plan) -> tuple:
+    """Key of a served set in the run's `served` map: (t/R, h/R, Material), and
+    "coarser" after them for an error-bar companion (study.dataset.build reads it)."""
+    key = (s.t_over_R, s.h_over_R, s.material)
+    return key + ("coarser",) if s in plan.error_shells else key
 
     def shell(self, t_over_R, h_over_R, material: Material = None) -> Shell:
         for s in self.shells:
@@ -86,7 +102,9 @@ class Plan:
         n = len(FACTORS)
         points = tuple(p[:n] for p in self.points if tuple(p[n:]) == tuple(values))
         shells = tuple(s for s in self.shells if s.material == m)
-        return replace(self, points=points, shells=shells, ratio_axes=None, materials=None)
+        errors = tuple(s for s in self.error_shells if s.material == m)
+        return replace(self, points=points, shells=shells, ratio_axes=None, materials=None,
+                       error_shells=errors)
 
 
 def make_plan(study: Study, settings: Settings = Settings(),
@@ -109,16 +127,20 @@ def make_plan(study: Study, settings: Settings = Settings(),
         C10, t, h, gamma = p[:4]
         g = gamma_hat(gamma, C10, study.R_mm)
         need[t, h, p[4:]] = max(need.get((t, h, p[4:]), 0.0), g)
-    shells = []
+    shells, errors = [], []
     for (t, h, values), g in sorted(need.items()):
         m = solids[values]
         key = pathset_key(t, h, study.interface, study.mesh, study.delta_max_over_R,
                           gamma_max_bucket(g), settings, m)
         shells.append(Shell(t, h, g, key, fingerprint(key), m))
+        if study.error_bars:    # the same shell on the next coarser mesh: a set of its own
+            key = pathset_key(t, h, study.interface, coarser_mesh(study.mesh),
+                              study.delta_max_over_R, gamma_max_bucket(g), settings, m)
+            errors.append(Shell(t, h, g, key, fingerprint(key), m))
     ratio_axes = ({r: tuple(sorted({p[4 + j] for p in points})) for j, r in enumerate(swept)}
                   if swept else None)
     return Plan(study, axes, tuple(points), tuple(shells), settings, ratio_axes,
-                solids if swept else None)
+                solids if swept else None, tuple(errors))
 
 
 def restrict(ps: PathSet, delta_max: float) -> PathSet:

@@ -39,7 +39,7 @@ from shell_adhesion.solver.pathset_dataset import (from_dataset, relaxation_from
 from . import dataset
 from .config import StudyError, load_study, validate
 from .keys import relaxation_part, solver_source_sha256
-from .plan import Plan, Shell, make_plan, restrict
+from .plan import Plan, Shell, make_plan, restrict, served_key
 from .products import Products, write_products
 from .progress import Progress
 
@@ -270,7 +270,7 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
     owner = {}                  # future -> (job, relaxation index or None)
     pending = set()
     for s in shells:
-        f = client.submit(loading_task, s.t_over_R, s.h_over_R, st.interface, st.mesh,
+        f = client.submit(loading_task, s.t_over_R, s.h_over_R, st.interface, s.key["mesh"],
                           st.delta_max_over_R, plan.settings, s.key["solver_source"],
                           s.material, st.task_timeout_s, pure=False,
                           key=f"loading-{s.fingerprint[:12]}-{uuid.uuid4().hex[:8]}")
@@ -313,7 +313,7 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
                      relaxation_newton_iterations=sum(r.newton_iterations for r in job.relaxations),
                      assembly_s=timer.assembly, linear_solve_s=timer.solve,
                      relaxation_s=job.seconds)
-        ps = pathset_of(s.t_over_R, s.h_over_R, st.interface, st.mesh, st.delta_max_over_R,
+        ps = pathset_of(s.t_over_R, s.h_over_R, st.interface, s.key["mesh"], st.delta_max_over_R,
                         s.gamma_max_hat, job.loading, job.relaxations, stats, job.views)
         summary = dict(relaxations=len(ps.relaxations), loading_states=len(ps.loading_delta),
                        newton_iterations=stats["loading_newton_iterations"]
@@ -354,7 +354,7 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
                         job.seconds += seconds
                         tally.relaxations_reused += 1
                         continue
-                g = client.submit(relax_task, s.t_over_R, s.h_over_R, st.interface, st.mesh,
+                g = client.submit(relax_task, s.t_over_R, s.h_over_R, st.interface, s.key["mesh"],
                                   start, s.gamma_max_hat, plan.settings,
                                   s.key["solver_source"], views, s.material,
                                   st.task_timeout_s, pure=False,
@@ -432,7 +432,7 @@ def _held_by_index(plan: Plan, catalogue) -> int:
     if not (directory / INDEX).exists():
         return 0
     with Catalogue(directory, create=False) as cat:
-        return sum(bool(cat.candidates(s.key)) for s in plan.shells)
+        return sum(bool(cat.candidates(s.key)) for s in plan.all_shells)
 
 
 def execute(study, out=None, catalogue=None, scheduler=None, progress=True, workers=None,
@@ -449,7 +449,7 @@ def execute(study, out=None, catalogue=None, scheduler=None, progress=True, work
     output = out_dir / f"{study.name}.nc"
     with _quiet_dask():
         client = None
-        if scheduler and _held_by_index(plan, catalogue) < len(plan.shells):
+        if scheduler and _held_by_index(plan, catalogue) < len(plan.all_shells):
             client = _connect_external(scheduler)       # before anything is created
         try:
             return _execute(plan, out_dir, output, catalogue, scheduler, client, progress,
@@ -491,13 +491,13 @@ def _execute(plan, out_dir, output, catalogue, scheduler, client, show, workers,
         run_id = cat.start_run(study.name, study.source, study.sha256, output,
                                solver.__version__)
         served, reused, missing = {}, [], []
-        for s in plan.shells:
+        for s in plan.all_shells:
             hit = cat.fetch(s.key)
             if hit is None:
                 missing.append(s)
             else:
                 entry, ds = hit
-                served[s.t_over_R, s.h_over_R, s.material] = (
+                served[served_key(s, plan)] = (
                     entry.fingerprint, restrict(from_dataset(ds), study.delta_max_over_R))
                 reused.append(s.fingerprint)
         progress = Progress([("loading paths", len(missing), "shells"),
@@ -520,9 +520,8 @@ def _execute(plan, out_dir, output, catalogue, scheduler, client, show, workers,
                     compute(plan, missing, cat, client=local, tally=tally, progress=progress)
         for s in missing:
             if s.fingerprint in tally.computed:
-                served[s.t_over_R, s.h_over_R, s.material] = (
-                    s.fingerprint, tally.computed[s.fingerprint])
-        failed_th = {(s.t_over_R, s.h_over_R, s.material): tally.failed[s.fingerprint]
+                served[served_key(s, plan)] = (s.fingerprint, tally.computed[s.fingerprint])
+        failed_th = {served_key(s, plan): tally.failed[s.fingerprint]
                      for s in missing if s.fingerprint in tally.failed}
         history = (f"{time.strftime('%Y-%m-%dT%H:%M:%S%z')} shell-adhesion "
                    f"{solver.__version__}: run_study {study.source}")
@@ -634,7 +633,7 @@ def summary(outcome: Outcome, ds=None) -> str:
         f"study {p.study.name} ({p.study.source}): cube C10 {len(ax['C10_MPa'])} x t/R "
         f"{len(ax['t_over_R'])} x h/R {len(ax['h_over_R'])} x gamma {len(ax['gamma_J_m2'])}, "
         f"requested points: {len(p.points)}; interface {p.study.interface}, mesh {p.study.mesh}",
-        f"FE path sets: {len(p.shells)} needed, {len(outcome.computed)} computed, "
+        f"FE path sets: {len(p.all_shells)} needed, {len(outcome.computed)} computed, "
         f"{len(outcome.reused)} reused, {len(outcome.failed)} failed "
         f"(catalogue {outcome.catalogue})",
         f"points: {c['ok']} ok, {c['out of range']} out of range, {c['solver failed']} "
@@ -643,7 +642,7 @@ def summary(outcome: Outcome, ds=None) -> str:
     if outcome.relaxations_reused:
         lines.append(f"relaxation paths: {outcome.relaxations_computed} solved, "
                      f"{outcome.relaxations_reused} kept from an interrupted run")
-    for s in p.shells:
+    for s in p.all_shells:
         if s.fingerprint in outcome.failed:
             lines.append(f"  failed t/R={s.t_over_R:g} h/R={s.h_over_R:g}: "
                          f"{outcome.failed[s.fingerprint]}")
@@ -684,15 +683,15 @@ def dry_run(study, catalogue=None, workers=None, scheduler=None) -> str:
     held, parts, times = 0, 0, []
     if (directory / INDEX).exists():
         with Catalogue(directory, create=False) as cat:
-            for s in plan.shells:
+            for s in plan.all_shells:
                 if cat.candidates(s.key):
                     held += 1
                 else:
                     parts += cat.count_parts(s.key)
             times = cat.timings(study.interface, study.mesh)
-    todo = len(plan.shells) - held
+    todo = len(plan.all_shells) - held
     lines = [f"study {study.name} ({study.source}): {len(plan.points)} requested points, "
-             f"{len(plan.shells)} distinct FE problems (path sets of one t/R, h/R each); "
+             f"{len(plan.all_shells)} distinct FE problems (path sets of one t/R, h/R each); "
              f"interface {study.interface}, mesh {study.mesh}, "
              f"delta_max/R {study.delta_max_over_R:g}",
              f"catalogue {directory}: holds {held} of them, {todo} to compute"

@@ -644,7 +644,8 @@ def summary(outcome: Outcome, ds=None) -> str:
                      f"{outcome.relaxations_reused} kept from an interrupted run")
     for s in p.all_shells:
         if s.fingerprint in outcome.failed:
-            lines.append(f"  failed t/R={s.t_over_R:g} h/R={s.h_over_R:g}: "
+            companion = " (coarser mesh, error bars)" if s in p.error_shells else ""
+            lines.append(f"  failed t/R={s.t_over_R:g} h/R={s.h_over_R:g}{companion}: "
                          f"{outcome.failed[s.fingerprint]}")
     if ds is not None and c["out of range"]:
         bad = ds["status"].values == "out of range"

@@ -81,13 +81,6 @@ class Plan:
         """The FE path sets to serve: the shells, then their error-bar companions."""
         return self.shells + self.error_shells
 
-
-def served_key(s: Shell, plan: Plan) -> tuple:
-    """Key of a served set in the run's `served` map: (t/R, h/R, Material), and
-    "coarser" after them for an error-bar companion (study.dataset.build reads it)."""
-    key = (s.t_over_R, s.h_over_R, s.material)
-    return key + ("coarser",) if s in plan.error_shells else key
-
     def shell(self, t_over_R, h_over_R, material: Material = None) -> Shell:
         for s in self.shells:
             if ((s.t_over_R, s.h_over_R) == (t_over_R, h_over_R)
@@ -105,6 +98,13 @@ def served_key(s: Shell, plan: Plan) -> tuple:
         errors = tuple(s for s in self.error_shells if s.material == m)
         return replace(self, points=points, shells=shells, ratio_axes=None, materials=None,
                        error_shells=errors)
+
+
+def served_key(s: Shell, plan: Plan) -> tuple:
+    """Key of a served set in the run's `served` map: (t/R, h/R, Material), and
+    "coarser" after them for an error-bar companion (study.dataset.build reads it)."""
+    key = (s.t_over_R, s.h_over_R, s.material)
+    return key + ("coarser",) if s in plan.error_shells else key
 
 
 def make_plan(study: Study, settings: Settings = Settings(),

@@ -70,6 +70,9 @@ def solve_cell(t, h, mesh, delta_max, gamma, timeout):
     return json.loads(run.stdout.strip().splitlines()[-1])
 
 
+_LABELS = {"refused (OutOfRange)": "no pull-off: paths do not\nbracket it (delta_max, G)"}
+
+
 def draw(cells, path, title):
     from matplotlib.figure import Figure
     fig = Figure(figsize=(11, 7), layout="constrained")
@@ -80,7 +83,7 @@ def draw(cells, path, title):
         colour = colours.get(c["status"], "#f4c7c3")
         ax.add_patch(__import__("matplotlib.patches", fromlist=["Rectangle"]).Rectangle(
             (i - 0.5, j - 0.5), 1, 1, color=colour))
-        lines = [c["status"]]
+        lines = [_LABELS.get(c["status"], c["status"])]
         if c["status"] == "solved":
             err = c.get("P_star_error")
             lines.append(f"P* {c['P_star']:.3g}" + (f" ± {err:.1g}" if err is not None else ""))
@@ -112,7 +115,14 @@ def main(argv=None):
     ap.add_argument("--gamma", type=float, default=0.005, help="gamma / (C10 R)")
     ap.add_argument("--timeout", type=float, default=600.0, help="per cell, s")
     ap.add_argument("--out", type=Path, default=FIGURE)
+    ap.add_argument("--redraw", type=Path, default=None,
+                    help="draw from the JSON line a previous run printed (no solving)")
     a = ap.parse_args(argv)
+    title = (f"supported domain, no_slip, {a.mesh} mesh (error bar from the next coarser), "
+             f"delta_max {a.delta_max:g} R, P* / (C10 R^2) at gamma/(C10 R) = {a.gamma:g}")
+    if a.redraw is not None:
+        draw(json.loads(a.redraw.read_text().strip().splitlines()[-1]), a.out, title)
+        return
     cells = []
     for h in H_OVER_R:
         for t in T_OVER_R:
@@ -121,9 +131,7 @@ def main(argv=None):
             print(f"t/R {t:<5g} h/R {h:<4g} {c['status']:<28} P* {c.get('P_star', np.nan):10.4g}"
                   f" +- {c.get('P_star_error') or np.nan:8.2g}  {c['wall_s']:7.1f} s  "
                   f"{c.get('reason', c.get('stopped_by', ''))[:90]}", flush=True)
-    draw(cells, a.out, f"supported domain, no_slip, {a.mesh} mesh (error bar from the next "
-                       f"coarser), delta_max {a.delta_max:g} R, P* / (C10 R^2) at gamma/(C10 R) "
-                       f"= {a.gamma:g}")
+    draw(cells, a.out, title)
     print(json.dumps(cells))
 
 

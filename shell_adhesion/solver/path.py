@@ -272,8 +272,8 @@ def load(d: Discretisation, interface: str, delta_max: float,
     the element-quality check (QualityError) or a step that Newton cannot take even at
     settings.step_min (ConvergenceError) ends the loading: with `stop_at_limit` the states
     converged so far are kept and the path says why it stopped (`stopped_by`,
-    `delta_reached`); without, or if no state beyond delta = 0 converged, the error is
-    raised.
+    `delta_reached`); without, or if no node beyond the apex has joined the contact yet
+    (nothing to relax), the error is raised.
     """
     if not (math.isfinite(delta_max) and delta_max > 0):
         raise ValueError(f"delta_max: {delta_max!r} must be a finite number > 0 (units of R)")
@@ -317,7 +317,7 @@ def load(d: Discretisation, interface: str, delta_max: float,
                 stall = ConvergenceError(
                     f"loading stalled at delta = {delta:.6g} R: Newton fails even for a step "
                     f"of {settings.step_min:g} R ({err})")
-                if not stop_at_limit or len(states) == 1:
+                if not (stop_at_limit and _has_event(states)):
                     raise stall from None
                 return LoadingPath(interface, tuple(states), timer, str(stall))
             continue
@@ -345,7 +345,7 @@ def load(d: Discretisation, interface: str, delta_max: float,
         try:
             new = pb.state(x, delta, r, held, joined, hist, centre_off=off)
         except QualityError as err:
-            if not stop_at_limit or len(states) == 1:
+            if not (stop_at_limit and _has_event(states)):
                 raise
             return LoadingPath(interface, tuple(states), timer, str(err))
         states.append(replace(new, dP_ddelta_left=dP_left))
@@ -354,6 +354,11 @@ def load(d: Discretisation, interface: str, delta_max: float,
     dx, dP = pb.tangent_direction(K, c)
     states[-1] = _with_stiffness(states[-1], dP)
     return LoadingPath(interface, tuple(states), timer)
+
+
+def _has_event(states) -> bool:
+    """A node beyond the apex has joined the contact in one of the states."""
+    return any(s.joined > 0 for s in states)
 
 
 def _advance(pb, c, x, delta, dx, free_nodes, target, step, delta_max):

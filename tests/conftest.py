@@ -51,6 +51,7 @@ sweeps:
   gamma_J_m2: [20, 30, 40]
 mesh: coarse
 delta_max_over_R: 0.1
+error_bars: false
 """
 
 

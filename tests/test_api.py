@@ -184,3 +184,35 @@ def test_bad_material_raises_before_any_computation(monkeypatch, change, message
     with pytest.raises(InputError) as e:
         sa.solve_case(**dict(BASE, **change))
     assert str(e.value).startswith(message) and "\n" not in str(e.value)
+
+
+def test_error_bars_beside_every_number(solved):
+    """Issue 10 item 7: every headline number and the loading P carry the error estimate of
+    solver.error_bars from the same shell on the next coarser mesh."""
+    from shell_adhesion.solver.error_bars import error_bar
+    out = solved.to_dict()
+    assert solved.coarser.mesh == "coarser"
+    assert out["provenance"]["error_bars"]["coarser_mesh"] == "coarser"
+    for po, cpo in zip(out["pull_off"], solved.coarser_pull_off):
+        for group, name, key in (("fixed_load", "P_N", "P_star"), ("fixed_grips", "delta_mm",
+                                                                     "delta_dagger")):
+            value, err = po[group][name], po[group][f"{name}_error"]
+            coarser = (force_N(getattr(cpo, key), 0.3, 20) if name == "P_N"
+                       else length_mm(getattr(cpo, key), 20))
+            assert err == pytest.approx(float(error_bar(value, coarser)), rel=1e-6)
+            assert 0 < err < 0.1 * abs(value)      # coarse mesh: a few per cent
+        assert po["eta_error"] > 0 and "a0_mm_error" in po
+    errors = out["loading"]["P_N_error"]
+    assert len(errors) == len(out["loading"]["P_N"]) and errors[-1] > 0
+    ds = solved.to_dataset()
+    assert {"P_star_error", "a_dagger_error", "eta_error", "loading_P_error"} <= set(ds)
+
+
+def test_no_error_bars_skips_the_coarser_mesh():
+    out = subprocess.run([sys.executable, "-m", "shell_adhesion", "case", "--R", "20", "--t", "3",
+                          "--h", "20", "--C10", "0.3", "--mesh", "coarse", "--delta-max", "0.5",
+                          "--json", "--no-error-bars"], env=ENV, capture_output=True, text=True,
+                         timeout=300)
+    assert out.returncode == 0, out.stderr
+    d = json.loads(out.stdout)
+    assert "P_N_error" not in d["loading"] and d["provenance"]["error_bars"] is None

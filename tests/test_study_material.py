@@ -11,6 +11,7 @@ R_mm: 20
 base: {C10_MPa: 0.3, t_over_R: 0.15, h_over_R: 1.0, gamma_J_m2: 30}
 mesh: coarse
 delta_max_over_R: 0.1
+error_bars: false
 outputs: {deformed_states: false}
 """
 MR = NH.replace("name: nh", "name: mr") + """\

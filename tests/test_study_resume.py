@@ -32,6 +32,7 @@ grid:
   gamma_J_m2: [25, 30]
 mesh: coarse
 delta_max_over_R: 0.1
+error_bars: false
 """
 
 

@@ -31,6 +31,7 @@ grid:
   gamma_J_m2: [20, 25, 30]
 mesh: coarse
 delta_max_over_R: 0.1
+error_bars: false       # one FE set per shell: these tests count them
 """
 UNREACHABLE = "tcp://127.0.0.1:9"       # a run that must compute nothing never connects
 

@@ -62,12 +62,13 @@ def has_hole(state: State) -> bool:
 
 
 def relax_from(d: Discretisation, interface: str, start: State, gamma_max: float = GAMMA_MAX,
-               settings: Settings = Settings()) -> RelaxationPath:
+               settings: Settings = Settings(), progress=None) -> RelaxationPath:
     """Relax one loaded state until the estimated G exceeds G_SAFETY * gamma_max.
 
     The step comes from the flat-punch estimate, which needs a positive start stiffness;
     a start that softens (dP/ddelta <= 0: the shell is buckling under its contact) is
-    relaxed in steps of settings.step_max / STEPS_PER_PATH instead.
+    relaxed in steps of settings.step_max / STEPS_PER_PATH instead.  `progress(delta)` is
+    called after each state (it may raise to end the path, e.g. on a wall-time limit).
     """
     G_stop = G_SAFETY * gamma_max
     k0 = start.dP_ddelta
@@ -76,7 +77,12 @@ def relax_from(d: Discretisation, interface: str, start: State, gamma_max: float
         step = min(dP_total / k0 / STEPS_PER_PATH, settings.step_max)
     else:
         step = settings.step_max / STEPS_PER_PATH
-    return relax(d, interface, start, lambda s: flat_punch_G(start, s) >= G_stop, step, settings)
+    def stop(s):
+        if progress is not None:
+            progress(s.delta)
+        return flat_punch_G(start, s) >= G_stop
+
+    return relax(d, interface, start, stop, step, settings)
 
 
 @dataclass(frozen=True, eq=False)
@@ -218,9 +224,11 @@ class PathSet:
 
 def solve_loading(t: float, h: float, interface: str, mesh: str, delta_max: float,
                   settings: Settings = Settings(), progress=None, material: Material = NEO_HOOKE,
-                  cavity: Cavity = OPEN):
+                  cavity: Cavity = OPEN, stop_at_limit: bool = False):
     """Discretisation and loading path of one dimensionless shell; a shell or delta_max
     outside the supported domain (solver.geometry) raises InputError (a ValueError).
+    With `stop_at_limit`, a loading refused by the element-quality check or stalled keeps
+    its states so far and says why (`LoadingPath.stopped_by`); else it raises.
 
     A closed `cavity` (solver.cavity) is pressurised first with the shell free; delta is
     then measured from the first touch of the pressurised shell, whose apex displacement
@@ -232,9 +240,11 @@ def solve_loading(t: float, h: float, interface: str, mesh: str, delta_max: floa
     cm = cap_mesh(cap, mesh_spec(mesh))
     d = discretise(cm, material=material)
     if not cavity.closed:
-        return d, load(d, interface, delta_max, settings, progress)
+        return d, load(d, interface, delta_max, settings, progress,
+                       stop_at_limit=stop_at_limit)
     d, x0, _ = first_touch(bind(d, cavity), settings)
-    return d, load(d, interface, delta_max, settings, progress, x0=x0)
+    return d, load(d, interface, delta_max, settings, progress, x0=x0,
+                   stop_at_limit=stop_at_limit)
 
 
 def cavity_lift(d: Discretisation) -> float:
@@ -251,6 +261,10 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
                 material: Material = NEO_HOOKE, cavity: Cavity = OPEN) -> tuple:
     """Loading and relaxation paths of one shell: (PathSet, Discretisation, LoadingPath).
 
+    A loading that reaches the element-quality limit (or stalls) before delta_max stops
+    there and keeps its states; the set's stats say how far it got (`delta_reached`) and
+    why (`loading_stopped_by`), and the pull-offs are computed from the states it has.
+
     `progress(delta)` is called after each loading state, `path_progress(done, total)`
     after each relaxation path; `map` (e.g. an executor's map) runs the independent
     relaxation paths in parallel.  `material` (solver.material.Material, ratios to C10)
@@ -260,7 +274,7 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
         raise InputError(f"gamma_max: {shown(gamma_max)} must be a finite number > 0 (gamma/(C10 R))")
     t0 = time.perf_counter()
     d, loading = solve_loading(t, h, interface, mesh, delta_max, settings, progress, material,
-                               cavity)
+                               cavity, stop_at_limit=True)
     t1 = time.perf_counter()
     relaxations = ()
     if relax_paths:
@@ -352,13 +366,15 @@ def provenance_stats(loading: LoadingPath, relaxations) -> dict:
     J_min, J_max, detF_min, distortion_min: over the loading states (refused beyond
     solver.quality's thresholds); relaxation_J_min, relaxation_J_max, relaxation_detF_min:
     over the relaxation paths (their held zone's edge is a crack tip, so J there is
-    reported, not refused).  inversion_delta, inversion_a: the first inversion, on loading
+    reported, not refused).  delta_reached: the deepest delta loaded; loading_stopped_by:
+    why the loading ended before delta_max ("" if it did not).  inversion_delta, inversion_a: the first inversion, on loading
     if the loading inverts, else on the relaxation path of smallest a that does
     (inversion_stage says which); inversion_delta_loading, inversion_a_loading: the
     loading's own; inverted_paths: how many relaxation paths inverted.
     """
     q = loading.quality
     out = dict(q.as_dict())
+    out.update(delta_reached=loading.delta_reached, loading_stopped_by=loading.stopped_by)
     if relaxations:
         out.update(relaxation_J_min=min(r.J_min for r in relaxations),
                    relaxation_J_max=max(r.J_max for r in relaxations),
@@ -383,12 +399,12 @@ def provenance_stats(loading: LoadingPath, relaxations) -> dict:
 def relaxation_task(t: float, h: float, interface: str, mesh: str, start: State,
                     gamma_max: float = GAMMA_MAX, settings: Settings = Settings(),
                     views: bool = False, material: Material = NEO_HOOKE,
-                    cavity: Cavity = OPEN, lift: float = 0.0) -> Relaxation:
+                    cavity: Cavity = OPEN, lift: float = 0.0, progress=None) -> Relaxation:
     """One relaxation path as an independent task (rebuilds the discretisation); with
-    `views`, it keeps the path's profiles and stress map.  A closed `cavity` needs the
-    loading's `lift` (`cavity_lift`)."""
+    `views`, it keeps the path's profiles and stress map; `progress` as in `relax_from`.
+    A closed `cavity` needs the loading's `lift` (`cavity_lift`)."""
     d = discretise(cap_mesh(Cap(t, h), mesh_spec(mesh)), material=material)
     if cavity.closed:
         d = lifted(bind(d, cavity), lift)
-    return Relaxation.of(relax_from(d, interface, start, gamma_max, settings),
+    return Relaxation.of(relax_from(d, interface, start, gamma_max, settings, progress),
                          d if views else None)

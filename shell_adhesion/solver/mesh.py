@@ -34,9 +34,20 @@ _BASE = MeshSpec("default", h_apex=0.004, growth=1.08, h_max=0.08,
                  layer0=0.008, layer_growth=1.35, layer_max=0.08, uniform=0.15)
 
 
+# the family: each level halves the sizes of the one before; 'coarser' only serves as the
+# second mesh of the error estimate of 'coarse' (`coarser_mesh`), 'finer' as a reference
+LEVELS = {"coarser": -2, "coarse": -1, "default": 0, "fine": 1, "finer": 2}
+
+
+def coarser_mesh(name: str) -> str:
+    """The next coarser mesh of the family (the second mesh of the error estimate)."""
+    level = LEVELS[name] - 1
+    return next(n for n, v in LEVELS.items() if v == level)
+
+
 def mesh_spec(name: str) -> MeshSpec:
     """The named mesh: 'coarse', 'default' or 'fine' (each halves the sizes of the last)."""
-    levels = {"coarse": -1, "default": 0, "fine": 1, "finer": 2}
+    levels = LEVELS
     if name not in levels:
         raise InputError(f"mesh: {name!r} must be one of coarse, default, fine")
     f = 2.0 ** (-levels[name])

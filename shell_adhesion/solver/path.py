@@ -99,6 +99,12 @@ class LoadingPath:
     interface: str
     states: tuple
     timer: Timer
+    stopped_by: str = ""      # why loading ended before delta_max ("": it reached delta_max)
+
+    @property
+    def delta_reached(self) -> float:
+        """The deepest delta / R loaded (delta_max unless `stopped_by` says why not)."""
+        return float(self.states[-1].delta)
 
     @property
     def events(self):
@@ -266,12 +272,17 @@ class _Problem:
 
 
 def load(d: Discretisation, interface: str, delta_max: float,
-         settings: Settings = Settings(), progress=None, x0=None) -> LoadingPath:
+         settings: Settings = Settings(), progress=None, x0=None,
+         stop_at_limit: bool = False) -> LoadingPath:
     """Push the rim down from delta = 0 to delta_max, locating every contact event.
 
     `progress(delta)` is called after each converged state if given.  `x0`: the state at
     delta = 0 touching the plane at the apex (a pressurised cavity, solver.cavity), else
-    the undeformed shell.
+    the undeformed shell.  A state refused by the element-quality check (QualityError) or
+    a step that Newton cannot take even at settings.step_min (ConvergenceError) ends the
+    loading: with `stop_at_limit` the states converged so far are kept and the path says
+    why it stopped (`stopped_by`, `delta_reached`); without, or if no node beyond the apex
+    has joined the contact yet (nothing to relax), the error is raised.
     """
     if not (math.isfinite(delta_max) and delta_max > 0):
         raise ValueError(f"delta_max: {shown(delta_max)} must be a finite number > 0 "
@@ -314,9 +325,12 @@ def load(d: Discretisation, interface: str, delta_max: float,
             # the cap never grows on failure, so repeated failures end at step_min
             step_cap = min(step_cap, step) / 2
             if step_cap < settings.step_min:
-                raise ConvergenceError(
+                stall = ConvergenceError(
                     f"loading stalled at delta = {delta:.6g} R: Newton fails even for a step "
-                    f"of {settings.step_min:g} R ({err})") from None
+                    f"of {settings.step_min:g} R ({err})")
+                if not (stop_at_limit and _has_event(states)):
+                    raise stall from None
+                return LoadingPath(interface, tuple(states), timer, str(stall))
             continue
         step_cap = min(settings.step_max, 2 * step_cap)
         x, delta, K, r = xn, dn, Kn, rn
@@ -339,8 +353,13 @@ def load(d: Discretisation, interface: str, delta_max: float,
         # the centre left the plane: a held node inside the zone let go, or the plane
         # pulls the centre while pushing elsewhere (no_slip holds it down)
         off = (bool(released) and released[0] < max(held)) or centre_pulled(d, r, held)
-        states.append(replace(pb.state(x, delta, r, held, joined, hist, centre_off=off),
-                              dP_ddelta_left=dP_left))
+        try:
+            new = pb.state(x, delta, r, held, joined, hist, centre_off=off)
+        except QualityError as err:
+            if not (stop_at_limit and _has_event(states)):
+                raise
+            return LoadingPath(interface, tuple(states), timer, str(err))
+        states.append(replace(new, dP_ddelta_left=dP_left))
         if progress is not None:
             progress(delta)
     dx, dP = pb.tangent_direction(K, c)
@@ -355,6 +374,9 @@ def _check_lock_up(d: Discretisation, x, delta):
     near = limit_state(deformation(d, x)[0], d.material)
     if near is not None and near[0] >= LOCK_UP:
         raise MaterialLimitError(delta, d.material.Jm, *near)
+def _has_event(states) -> bool:
+    """A node beyond the apex has joined the contact in one of the states."""
+    return any(s.joined > 0 for s in states)
 
 
 def _advance(pb, c, x, delta, dx, free_nodes, target, step, delta_max):

@@ -269,19 +269,24 @@ def jkr_ratio(ds: xr.Dataset) -> xr.DataArray:
 # ---------------------------------------------------------------------------------------
 # trends
 
-def trend_of(values, uncertainty: float) -> str:
+def trend_of(values, uncertainty: float, errors=None) -> str:
     """Verdict on a series of magnitudes: "increasing", "decreasing", "non-monotonic" or
-    "flat".  A step counts only if it exceeds 2 * uncertainty * |value| (mean of its two
-    ends); if no step counts but the whole change first -> last does, its sign decides."""
+    "flat".  A step counts only if it exceeds the combined error of its two ends, the sum
+    of their error bars (`errors`, absolute; where one is missing, uncertainty * |value|);
+    if no step counts but the whole change first -> last does, its sign decides."""
     v = np.abs(np.asarray(values, dtype=float))
     if len(v) < 2:
         raise ValueError("a trend needs at least two values")
+    e = uncertainty * v
+    if errors is not None:
+        given = np.abs(np.asarray(errors, dtype=float))
+        e = np.where(np.isfinite(given), given, e)
     steps = np.diff(v)
-    real = np.abs(steps) > 2 * uncertainty * (v[1:] + v[:-1]) / 2
+    real = np.abs(steps) > e[1:] + e[:-1]
     signs = set(np.sign(steps[real]))
     if not signs:
         total = v[-1] - v[0]
-        if abs(total) <= 2 * uncertainty * (v[-1] + v[0]) / 2:
+        if abs(total) <= e[-1] + e[0]:
             return "flat"
         signs = {np.sign(total)}
     if len(signs) > 1:
@@ -325,15 +330,23 @@ def trend(ds: xr.Dataset, dim: str, var: str = "P_star") -> Trend:
     x = along(ds, var, dim)
     u = mesh_uncertainty(ds)
     coords, values = x[dim].values, np.abs(x.values)
-    verdict = trend_of(values, u)
+    errors = (along(ds, f"{var}_error", dim).reindex({dim: x[dim]}).values
+              if f"{var}_error" in ds else None)
+    verdict = trend_of(values, u, errors)
     change = float((values[-1] - values[0]) / values[0])
     claim = PAPER_TRENDS.get(dim) if var == "P_star" else None
     agrees = None if claim is None else verdict == claim
     name = {"P_star": "|P*|"}.get(var, f"|{var}|")
     vu, du = _unit(ds[var]), _unit(ds[dim])
     pts = ", ".join(f"{_with_unit(v, vu)} at {c:g}" for c, v in zip(coords, values))
+    if errors is not None and np.isfinite(errors).all():
+        pts = ", ".join(f"{_with_unit(v, vu)} +- {e:.2g} at {c:g}"
+                        for c, v, e in zip(coords, values, errors))
+        basis = "a step counts beyond the sum of its two error bars"
+    else:
+        basis = f"mesh uncertainty {u:.1%} per value"
     sentence = (f"{name} {verdict} along {dim}{f' [{du}]' if du else ''}: {pts} "
-                f"({change:+.2%} in all; mesh uncertainty {u:.1%} per value)")
+                f"({change:+.2%} in all; {basis})")
     if claim is not None:
         sentence += f"; paper: {claim} ({'agrees' if agrees else 'DISAGREES'})"
     return Trend(dim, var, verdict, coords, values, change, u, claim, agrees, sentence)

@@ -22,6 +22,8 @@ from shell_adhesion.solver.contact import INTERFACES
 from shell_adhesion.solver.path import MaterialLimitError
 from shell_adhesion.solver.geometry import InputError, check_cap, check_delta_max
 from shell_adhesion.solver.material import MODELS, NEO_HOOKE, Material
+from shell_adhesion.solver.error_bars import estimate as error_estimate
+from shell_adhesion.solver.mesh import coarser_mesh
 from shell_adhesion.solver.path import Settings
 from shell_adhesion.solver.scaling import check_C10, check_finite, check_R, gamma_hat
 
@@ -209,12 +211,19 @@ class CaseResult:
     provenance : dict
         Package version, mesh, interface, dofs, Newton iterations, wall times [s] and
         solver tolerances.
+    coarser : solver.case.PathSet or None
+        The same shell on the next coarser mesh of the family, whose values give the
+        error bars (`solver.error_bars`); None with ``error_bars=False``.
+    coarser_pull_off : tuple
+        Its PullOff per gamma (None where its paths do not reach the pull-off).
     """
 
     input: CaseInput
     pathset: PathSet
     adhesion: tuple = ()
     provenance: dict = field(default_factory=dict)
+    coarser: PathSet = None         # the same shell on the next coarser mesh (error bars)
+    coarser_pull_off: tuple = ()    # its PullOff per gamma (None: out of its range)
 
     def to_dict(self) -> dict:
         """The result as plain JSON-able data (NaN as None): input, loading, relaxation,
@@ -236,7 +245,7 @@ def solve_case(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2=(), *, delta_max_mm=None,
                interface="no_slip", mesh="default", material="neo_hooke", C01_MPa=0.0,
                C20_MPa=0.0, C30_MPa=0.0, Jm=None, D1_per_MPa=0.0, cavity="open",
                p_kPa=None, p0_kPa=None, p_atm_kPa=None, gas_exponent=None,
-               progress=True) -> CaseResult:
+               progress=True, error_bars=True) -> CaseResult:
     """Solve one spherical-cap shell pressed on a rigid plane, and its pull-off.
 
     Parameters
@@ -285,6 +294,10 @@ def solve_case(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2=(), *, delta_max_mm=None,
         Polytropic exponent n of p V^n = const (sealed; >= 1, default 1 isothermal).
     progress : bool
         Show a progress bar on stderr (when it is a terminal).
+    error_bars : bool
+        Also solve the next coarser mesh of the family and give every headline number
+        and the loading P an error bar (``P_N_error`` beside ``P_N`` in the JSON); about
+        a quarter more time.  False skips it.
 
     Returns
     -------
@@ -303,10 +316,26 @@ def solve_case(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2=(), *, delta_max_mm=None,
                      material=material, C01_MPa=C01_MPa, C20_MPa=C20_MPa, C30_MPa=C30_MPa,
                      Jm=Jm, D1_per_MPa=D1_per_MPa, cavity=cavity, p_kPa=p_kPa, p0_kPa=p0_kPa,
                      p_atm_kPa=p_atm_kPa, gas_exponent=gas_exponent)
-    return _solve(inp, progress)
+    return _solve(inp, progress, error_bars)
 
 
-def _solve(inp: CaseInput, progress: bool) -> CaseResult:
+def _coarser(inp: CaseInput, gamma_max: float, g_hats):
+    """The shell on the next coarser mesh and its pull-off per gamma (None where its
+    paths do not give one)."""
+    ps, _, _ = solve_paths(inp.t_mm / inp.R_mm, inp.h_mm / inp.R_mm, inp.interface,
+                           coarser_mesh(inp.mesh), inp.delta_max_mm / inp.R_mm, gamma_max,
+                           relax_paths=bool(g_hats), material=inp.material,
+                           cavity=inp.cavity)
+    out = []
+    for gh in g_hats:
+        try:
+            out.append(ps.pull_off(gh)[1])
+        except ValueError:          # OutOfRange, or a surface it cannot build
+            out.append(None)
+    return ps, tuple(out)
+
+
+def _solve(inp: CaseInput, progress: bool, error_bars: bool = True) -> CaseResult:
     from tqdm import tqdm
 
     R, C10 = inp.R_mm, inp.C10_MPa
@@ -344,6 +373,10 @@ def _solve(inp: CaseInput, progress: bool) -> CaseResult:
     if g_hats:
         surface = ps.surface()
         adhesion = tuple((g, *ps.pull_off(gh, surface)) for g, gh in zip(inp.gamma_J_m2, g_hats))
+    t_energy = time.perf_counter()
+    coarser, coarser_po = None, ()
+    if error_bars:
+        coarser, coarser_po = _coarser(inp, gamma_max, g_hats)
     t3 = time.perf_counter()
     settings = Settings()
     provenance = {
@@ -354,13 +387,16 @@ def _solve(inp: CaseInput, progress: bool) -> CaseResult:
         + sum(r.newton_iterations for r in ps.relaxations),
         "wall_s": round(t3 - t0, 3),
         "time_split_s": {"loading": round(t1 - t0, 3), "relaxation": round(t2 - t1, 3),
-                         "energy_method": round(t3 - t2, 3)},
-        "timing": {**ps.stats.get("timing", {}), "energy_method_s": round(t3 - t2, 4)},
+                         "energy_method": round(t_energy - t2, 3),
+                         "coarser_mesh": round(t3 - t_energy, 3)},
+        "timing": {**ps.stats.get("timing", {}), "energy_method_s": round(t_energy - t2, 4)},
         "tolerances": {"newton_rtol": settings.tol, "newton_atol": settings.atol,
                        "gap_tol_over_R": settings.gap_tol},
         "relaxation_gamma_max_over_C10R": gamma_max,
+        "error_bars": ({"coarser_mesh": coarser.mesh, **error_estimate()} if error_bars
+                       else None),
         **checks_dict(ps.stats, R, C10), **cavity_dict(ps.stats, R, C10)}
-    return CaseResult(inp, ps, adhesion, provenance)
+    return CaseResult(inp, ps, adhesion, provenance, coarser, coarser_po)
 
 
 def cavity_dict(stats: dict, R_mm: float, C10_MPa: float) -> dict:
@@ -379,14 +415,17 @@ def cavity_dict(stats: dict, R_mm: float, C10_MPa: float) -> dict:
 
 def checks_dict(stats: dict, R_mm: float, C10_MPa: float) -> dict:
     """What the solver checked, with units: the worst element quality (pointwise J and
-    in-plane det F, dimensionless), where the contact zone inverted (mm; None: never) and
+    in-plane det F, dimensionless), how deep the loading got (mm) and why it stopped short
+    of delta_max (None: it did not), where the contact zone inverted (mm; None: never) and
     the largest gamma every pair of relaxation paths reached (J/m^2; None: no pair)."""
     quality = {k: stats.get(k) for k in ("J_min", "J_max", "detF_min", "distortion_min",
                                          "relaxation_J_min", "relaxation_J_max",
                                          "relaxation_detF_min") if k in stats}
     mm = lambda v: None if v is None else round(v * R_mm, 10)
     G = stats.get("G_max_reached")
-    return {"element_quality": quality,
+    return {"loading_reached": {"delta_reached_mm": mm(stats.get("delta_reached")),
+                                "stopped_by": stats.get("loading_stopped_by") or None},
+            "element_quality": quality,
             "inversion": {"stage": stats.get("inversion_stage"),
                           "inversion_delta_mm": mm(stats.get("inversion_delta")),
                           "inversion_a_mm": mm(stats.get("inversion_a")),

@@ -9,6 +9,7 @@ import numpy as np
 import xarray as xr
 
 from shell_adhesion.solver import theory
+from shell_adhesion.solver.error_bars import curve_error, error_bar
 from shell_adhesion.solver.scaling import energy_mJ, force_N, length_mm
 
 from .dataset import _CURVES, _PULL_OFF     # the cube's names, units and long names
@@ -32,16 +33,26 @@ def _values(result):
     kPa = lambda x: np.asarray(x, dtype=float) * C10 * 1e3
     loading = dict(delta=L(ps.loading_delta), P=F(ps.loading_P), a=L(ps.loading_a),
                    U=E(ps.loading_U), V=V(ps.loading_V), p=kPa(ps.loading_p))
+    cps = result.coarser
+    if cps is not None:
+        loading["P_error"] = curve_error(loading["delta"], loading["P"],
+                                         L(cps.loading_delta), F(cps.loading_P))
     relaxations = [dict(a=float(L(r.a)), delta=L(r.delta), P=F(r.P), U=E(r.U),
                         V=V(r.V), p=kPa(r.p),
                         ended_by=r.ended_by, centre_lifts=bool(r.centre_lifts),
                         penetration=bool(r.penetration), usable=r.usable)
                    for r in ps.relaxations] if result.adhesion else []
     adhesion = []
-    for g, eq, po in result.adhesion:
+    coarser = result.coarser_pull_off or (None,) * len(result.adhesion)
+    for (g, eq, po), cpo in zip(result.adhesion, coarser):
         conv = dict(force=F, length=L)
         values = {k: float(conv[kind](getattr(po, k))) for k, (_, _, kind) in _PULL_OFF.items()}
         values["eta"] = theory.eta_of(values["P_star"], R, inp.t_mm, C10, g, inp.material)
+        if cps is not None:
+            c = {k: float(conv[kind](getattr(cpo, k))) if cpo is not None else np.nan
+                 for k, (_, _, kind) in _PULL_OFF.items()}
+            c["eta"] = theory.eta_of(c["P_star"], R, inp.t_mm, C10, g, inp.material)
+            values.update({f"{k}_error": float(error_bar(values[k], c[k])) for k in c})
         values["jkr_P_star"] = theory.jkr_P_star_N(R, g)
         curve = dict(a=L(eq.a), delta=L(eq.delta), P=F(eq.P),
                      stable_fixed_load=np.asarray(eq.stable_fixed_load, dtype=bool),
@@ -76,6 +87,8 @@ def as_dict(result) -> dict:
     closed = result.input.cavity.closed
     if closed:   # the enclosed volume and the gauge pressure of a closed cavity
         out["loading"].update(V_mm3=_list(loading["V"]), p_kPa=_list(loading["p"]))
+    if "P_error" in loading:
+        out["loading"]["P_N_error"] = _list(loading["P_error"])
     if adhesion:
         out["relaxation"] = [
             {"a_mm": _num(r["a"]), "delta1_mm": _num(r["delta"][0]), "P1_N": _num(r["P"][0]),
@@ -90,15 +103,27 @@ def as_dict(result) -> dict:
              "stable_fixed_load": [bool(v) for v in c["stable_fixed_load"]],
              "stable_fixed_grips": [bool(v) for v in c["stable_fixed_grips"]]}
             for g, _, c in adhesion]
-        out["pull_off"] = [
-            {"gamma_J_m2": g,
-             "fixed_load": {"P_N": _num(v["P_star"]), "delta_mm": _num(v["delta_star"]),
-                            "a_mm": _num(v["a_star"])},
-             "fixed_grips": {"P_N": _num(v["P_dagger"]), "delta_mm": _num(v["delta_dagger"]),
-                             "a_mm": _num(v["a_dagger"])},
-             "a0_mm": _num(v["a0"]), "eta": _num(v["eta"]), "jkr_P_star_N": _num(v["jkr_P_star"])}
-            for g, v, _ in adhesion]
+        out["pull_off"] = [_pull_off_dict(g, v) for g, v, _ in adhesion]
     out["provenance"] = result.provenance
+    return out
+
+
+# JSON name of each pull-off value: (group or None, name)
+_JSON_NAMES = {"P_star": ("fixed_load", "P_N"), "delta_star": ("fixed_load", "delta_mm"),
+               "a_star": ("fixed_load", "a_mm"), "P_dagger": ("fixed_grips", "P_N"),
+               "delta_dagger": ("fixed_grips", "delta_mm"), "a_dagger": ("fixed_grips", "a_mm"),
+               "a0": (None, "a0_mm"), "eta": (None, "eta")}
+
+
+def _pull_off_dict(g, v) -> dict:
+    """One gamma's pull-off; with error bars, "<name>_error" beside each "<name>"."""
+    out = {"gamma_J_m2": g, "fixed_load": {}, "fixed_grips": {}}
+    for k, (group, name) in _JSON_NAMES.items():
+        where = out[group] if group else out
+        where[name] = _num(v[k])
+        if f"{k}_error" in v:
+            where[f"{name}_error"] = _num(v[f"{k}_error"])
+    out["jkr_P_star_N"] = _num(v["jkr_P_star"])
     return out
 
 
@@ -129,6 +154,10 @@ def as_dataset(result) -> xr.Dataset:
         "loading_U": ("loading_state", loading["U"],
                       _attrs("mJ", "strain energy U on loading without adhesion")),
     }
+    if "P_error" in loading:
+        data["loading_P_error"] = ("loading_state", loading["P_error"], _attrs(
+            "N", "discretisation error estimate of the loading P (NaN: beyond the coarser "
+                 "mesh's loading)"))
     coords = {
         "R": ((), inp.R_mm, _attrs("mm", "outer radius of curvature R")),
         "t_mm": ((), inp.t_mm, _attrs("mm", "shell thickness t")),
@@ -176,6 +205,11 @@ def as_dataset(result) -> xr.Dataset:
                        _attrs(units, long_name))
         data["eta"] = ("gamma", np.array([v["eta"] for _, v, _ in adhesion]), _attrs(
             "1", "eta of eq. 3: |P*| / [gamma^4 R^4 (1 - nu^2) / (E t^2)]^(1/3)"))
+        for k in (*_PULL_OFF, "eta"):
+            if f"{k}_error" in adhesion[0][1]:
+                units = _PULL_OFF[k][0] if k in _PULL_OFF else "1"
+                data[f"{k}_error"] = ("gamma", np.array([v[f"{k}_error"] for _, v, _ in adhesion]),
+                                      _attrs(units, f"discretisation error estimate of {k}"))
         data["jkr_P_star"] = ("gamma", np.array([v["jkr_P_star"] for _, v, _ in adhesion]),
                               _attrs("N", "JKR pull-off force of a solid sphere of radius R"))
         E = ("gamma", "point")

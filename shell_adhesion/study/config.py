@@ -26,6 +26,9 @@
       p_atm_kPa: 101.325        #   pressure, sealed: ambient pressure, kPa (default 101.325)
                                 #   sealed: p0_kPa (gauge at sealing, default 0), gas_exponent
                                 #   (n of p V^n = const, >= 1, default 1 isothermal)
+    error_bars: true            # a second, coarser mesh for error bars (default true)
+    task_timeout_s: 3600        # wall-time limit of one FE task, s (default 3600): a task
+                                #   past it is recorded as failed with its reason
     outputs:
       equilibrium_curves: true  # a, delta, P along each equilibrium curve (default true)
       loading_curves: true      # the loading curve of each shell (default true)
@@ -91,9 +94,10 @@ _OF_MODEL = {"neo_hooke": (), "mooney_rivlin": ("C01_over_C10",),
 _RATIO_DIGITS = 12          # a ratio of MPa values is rounded so equal ratios share paths
 MESHES = ("coarse", "default", "fine")
 KEYS = ("name", "description", "R_mm", "base", "sweeps", "grid", "material", "interface", "mesh",
-        "delta_max_over_R", "outputs", "cavity")
+        "delta_max_over_R", "error_bars", "task_timeout_s", "outputs", "cavity")
 CAVITY_KEYS = ("mode", "p_kPa", "p0_kPa", "p_atm_kPa", "gas_exponent")
 CAVITY_FACTORS = ("p_kPa",)     # cavity parameters that sweeps and grid may vary
+TASK_TIMEOUT_S = 3600.0     # default wall-time limit of one FE task (a loading or one path)
 OUTPUTS = ("equilibrium_curves", "loading_curves", "relaxation_curves", "deformed_states")
 MAX_BYTES = 1_000_000       # a study file is a few lines; refuse anything over 1 MB
 _STEM = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]{0,99}")
@@ -129,6 +133,8 @@ class Study:
     sha256: str = ""                # of the file's bytes
     material: dict = field(default_factory=dict)   # model and fixed ratios ({}: neo-Hookean)
     cavity: dict = field(default_factory=dict)     # the cavity block in kPa ({}: open)
+    error_bars: bool = True         # a second, coarser mesh gives each number's error bar
+    task_timeout_s: float = TASK_TIMEOUT_S   # wall-time limit of one FE task, s
 
     @property
     def model(self) -> str:
@@ -165,6 +171,7 @@ class Study:
                     base=dict(self.base), sweeps={k: list(v) for k, v in self.sweeps.items()},
                     grid={k: list(v) for k, v in self.grid.items()}, interface=self.interface,
                     mesh=self.mesh, delta_max_over_R=self.delta_max_over_R,
+                    error_bars=self.error_bars, task_timeout_s=self.task_timeout_s,
                     outputs=asdict(self.outputs),
                     **({"material": dict(self.material)} if self.material else {}),
                     **({"cavity": dict(self.cavity)} if self.cavity else {}))
@@ -386,9 +393,16 @@ def _validate(doc, source, sha256) -> Study:
         if c in sweeps and c not in cavity:
             raise StudyError(f"cavity.{c}: missing (sweeps vary one factor around its base "
                              "value, which the cavity block gives)")
+    error_bars = doc.get("error_bars", True)
+    if not isinstance(error_bars, bool):
+        raise StudyError(f"error_bars: {_short(error_bars)} must be true or false")
+    timeout = _number(doc.get("task_timeout_s", TASK_TIMEOUT_S), "task_timeout_s")
+    if not timeout > 0:
+        raise StudyError(f"task_timeout_s: {timeout:g} must be > 0 (seconds per FE task)")
 
     study = Study(name, R_mm, base, sweeps, grid, interface, mesh, delta_max, outputs,
-                  description, source, sha256, material, cavity=cavity)
+                  description, source, sha256, material, cavity=cavity, error_bars=error_bars,
+                  task_timeout_s=timeout)
     _check_points(study)
     return study
 

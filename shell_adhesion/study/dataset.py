@@ -53,6 +53,7 @@ from shell_adhesion import solver
 from shell_adhesion.catalogue import write_atomic
 from shell_adhesion.solver import case
 from shell_adhesion.solver.cavity import P_ATM_KPA
+from shell_adhesion.solver.error_bars import curve_error, error_bar
 from shell_adhesion.solver.material import NEO_HOOKE
 from shell_adhesion.solver.scaling import energy_mJ, force_N, gamma_hat, length_mm
 from shell_adhesion.solver.theory import eta_of
@@ -109,7 +110,9 @@ def build(plan: Plan, served: dict, failed: dict, history: str = "") -> xr.Datas
 
     served: (t/R, h/R[, Material]) -> (fingerprint, PathSet) for the shells with FE paths;
     failed: (t/R, h/R[, Material]) -> reason for the shells whose FE paths could not be
-    computed.  A study sweeping material ratios gets one more dimension per swept ratio
+    computed.  A key ending in "coarser" (after the Material) is a shell's error-bar
+    companion on the next coarser mesh (study.plan.served_key): its values give the
+    `<name>_error` variables (solver.error_bars; NaN where it has none).  A study sweeping material ratios gets one more dimension per swept ratio
     (named as in the study file, e.g. C01_over_C10): the cubes of each solid, concatenated
     (curves NaN-padded to the longest).
     """
@@ -118,8 +121,8 @@ def build(plan: Plan, served: dict, failed: dict, history: str = "") -> xr.Datas
     material = plan.shells[0].material if plan.shells else NEO_HOOKE
     if plan.cavities:
         return _build_cavity(plan, served, failed, history, material)
-    served = {k[:2]: v for k, v in served.items() if len(k) == 2 or k[2] == material}
-    failed = {k[:2]: v for k, v in failed.items() if len(k) == 2 or k[2] == material}
+    served = {_short(k): v for k, v in served.items() if len(k) == 2 or k[2] == material}
+    failed = {_short(k): v for k, v in failed.items() if len(k) == 2 or k[2] == material}
     ds = _build(plan, served, failed, history, material)
     if material != NEO_HOOKE or plan.study.material:
         ds.attrs.update(_material_attrs(plan, material))
@@ -150,8 +153,8 @@ def _build_swept(plan: Plan, served: dict, failed: dict, history: str) -> xr.Dat
     for values in combos:
         m = plan.materials[values]
         cubes.append(_build(plan.for_ratios(values),
-                            {k[:2]: v for k, v in served.items() if k[2] == m},
-                            {k[:2]: v for k, v in failed.items() if k[2] == m}, history, m))
+                            {_short(k): v for k, v in served.items() if k[2] == m},
+                            {_short(k): v for k, v in failed.items() if k[2] == m}, history, m))
     ds = xr.concat(cubes, dim="_material", join="outer", data_vars="all",
                    coords="different", compat="equals", combine_attrs="override")
     ds = ds.assign_coords({n: ("_material", np.array([v[j] for v in combos], dtype=float))
@@ -163,7 +166,10 @@ def _build_swept(plan: Plan, served: dict, failed: dict, history: str) -> xr.Dat
     status = ds["status"]
     ds["status"] = status.where(status.notnull(), "not requested").astype(object)
     ds["status"].attrs = status.attrs
-    ds["reason"] = ds["reason"].where(ds["reason"].notnull(), "").astype(object)
+    for k in ("reason", "loading_stopped_by"):
+        attrs = ds[k].attrs
+        ds[k] = ds[k].where(ds[k].notnull(), "").astype(object)
+        ds[k].attrs = attrs
     for n in names:
         ds[n].attrs = _attrs("1", _RATIO_NAMES[n])
     for k in plan.study.in_MPa:         # the coefficients the file gives in MPa, as given
@@ -187,7 +193,7 @@ def _build_cavity(plan: Plan, served: dict, failed: dict, history: str, material
     for C10, values in plan.cavity_groups():
         sub = plan.for_cavity(C10, values)
         cavity = sub.shells[0].cavity
-        pick = lambda d: {k[:2]: v for k, v in d.items()
+        pick = lambda d: {k[:2] + k[4:]: v for k, v in d.items()   # k[4:]: ("coarser",)
                           if len(k) > 3 and k[2] == material and k[3] == cavity}
         here = pick(served)
         cube = _build(sub, here, pick(failed), history, material)
@@ -246,7 +252,8 @@ def _cavity_curves(plan: Plan, served: dict, C10: float) -> dict:
     study, R, ax = plan.study, plan.study.R_mm, plan.axes
     index = {f: {v: i for i, v in enumerate(ax[f])} for f in ("t_over_R", "h_over_R")}
     shells = (len(ax["t_over_R"]), len(ax["h_over_R"]))
-    at = {(index["t_over_R"][t], index["h_over_R"][h]): ps for (t, h), (_, ps) in served.items()}
+    at = {(index["t_over_R"][k[0]], index["h_over_R"][k[1]]): ps
+          for k, (_, ps) in served.items() if len(k) == 2}     # not the error-bar companions
     mm3, kPa = R ** 3, C10 * 1e3
     S = ("t_over_R", "h_over_R")
     lift = np.full(shells, np.nan)
@@ -286,9 +293,21 @@ _MPA_NAMES = {"C01_MPa": ("MPa", "Mooney-Rivlin C01 (C01_over_C10 x C10)"),
               "C20_MPa": ("MPa", "Yeoh C20 (C20_over_C10 x C10)"),
               "C30_MPa": ("MPa", "Yeoh C30 (C30_over_C10 x C10)"),
               "D1_per_MPa": ("1/MPa", "compressibility D1 (D1_times_C10 / C10)")}
+def _short(key) -> tuple:
+    """(t/R, h/R) of a served key, with "coarser" kept for an error-bar companion."""
+    return key[:2] + tuple(key[3:])
+
+
+def _errors(values, coarser) -> dict:
+    """`<name>_error` of each pull-off value and eta from the coarser mesh's values."""
+    return {f"{k}_error": float(error_bar(v, coarser[k])) if coarser else np.nan
+            for k, v in values.items()}
 
 
 def _build(plan: Plan, served: dict, failed: dict, history: str, material) -> xr.Dataset:
+    coarser = {k[:2]: v for k, v in served.items() if len(k) == 3}
+    served = {k: v for k, v in served.items() if len(k) == 2}
+    failed = {k: v for k, v in failed.items() if len(k) == 2}
     study = plan.study
     R = study.R_mm
     ax = plan.axes
@@ -301,6 +320,12 @@ def _build(plan: Plan, served: dict, failed: dict, history: str, material) -> xr
             surfaces[th] = ps.surface()
         except Exception as e:      # too few usable paths to build G at all
             surface_errors[th] = f"energy surface: {type(e).__name__}: {e}"
+    coarser_surfaces = {}
+    for th, (_, ps) in coarser.items():
+        try:
+            coarser_surfaces[th] = ps.surface()
+        except Exception:           # no error bars for this shell
+            pass
 
     status = np.full(shape, "not requested", dtype=object)
     reason = np.full(shape, "", dtype=object)
@@ -317,22 +342,40 @@ def _build(plan: Plan, served: dict, failed: dict, history: str, material) -> xr
                 results[i] = _evaluate(served[t, h][1], surfaces[t, h], C10, R, t, gamma,
                                        material)
                 status[i] = "ok"
+                if plan.study.error_bars:
+                    try:
+                        c = _evaluate(coarser[t, h][1], coarser_surfaces[t, h], C10, R, t,
+                                      gamma, material)[0]
+                    except (KeyError, ValueError):   # not served, or out of its range
+                        c = None
+                    results[i][0].update(_errors(results[i][0], c))
             except ValueError as e:     # solver.energy.OutOfRange and gamma > gamma_max
                 status[i], reason[i] = "out of range", str(e)
 
     n_point = max([len(c["a_eq_mm"]) for _, c in results.values()], default=0)
     n_load = max([len(ps.loading_delta) for _, ps in served.values()], default=0)
-    values = {k: np.full(shape, np.nan) for k in (*_PULL_OFF, "eta")}
+    names = (*_PULL_OFF, "eta")
+    values = {k: np.full(shape, np.nan)
+              for k in names + (tuple(f"{n}_error" for n in names) if study.error_bars else ())}
     curves = {k: np.full(shape + (n_point,), np.nan) for k in _CURVES}
+    inverted = np.full(shape, np.nan)
     for i, (v, c) in results.items():
         for k, x in v.items():
             values[k][i] = x
+        ps = served[ax["t_over_R"][i[1]], ax["h_over_R"][i[2]]][1]
+        inverted[i] = float(ps.inverted([v["a_star"] / R, v["a_dagger"] / R]).any())
         for k, x in c.items():
             curves[k][i][:len(x)] = x
 
     data = {k: (DIMS, values[k], _attrs(u, ln)) for k, (u, ln, _) in _PULL_OFF.items()}
     data["eta"] = (DIMS, values["eta"], _attrs(
         "1", "eta of eq. 3: |P*| / [gamma^4 R^4 (1 - nu^2) / (E t^2)]^(1/3)"))
+    if study.error_bars:
+        for k in names:
+            units = _PULL_OFF[k][0] if k in _PULL_OFF else "1"
+            data[f"{k}_error"] = (DIMS, values[f"{k}_error"], _attrs(
+                units, f"discretisation error estimate of {k} (next coarser mesh, "
+                       "solver.error_bars; NaN: not available)"))
     data["status"] = (DIMS, status, _attrs(
         "1", "evaluation status of the point", comment="one of: " + "; ".join(STATUS)))
     data["reason"] = (DIMS, reason, _attrs("1", "why a point is not ok (empty when ok)"))
@@ -357,6 +400,10 @@ def _build(plan: Plan, served: dict, failed: dict, history: str, material) -> xr
         "1", "catalogue fingerprint of the FE path set used (empty: none)"))
     data["gamma_max_hat"] = (("t_over_R", "h_over_R"), gmax, _attrs(
         "1", "largest gamma / (C10 R) the shell's FE paths serve"))
+    data.update(_checks(served, index, shells, C10s, R))
+    data["pull_off_inverted"] = (DIMS, inverted, _attrs(
+        "1", "pull-off point bridges or follows a contact-zone inversion (1 yes, 0 no, "
+             "NaN: not evaluated)"))
     if study.outputs.relaxation_curves:
         data.update(_relaxation_curves(served, index, shells, C10s, R))
     if study.outputs.deformed_states:
@@ -372,6 +419,18 @@ def _build(plan: Plan, served: dict, failed: dict, history: str, material) -> xr
             "N", "rim force P on loading without adhesion"))
         data["loading_U"] = (("C10", *L), energy_mJ(load["U"][None], c, R), _attrs(
             "mJ", "strain energy U on loading without adhesion"))
+        if study.error_bars:
+            err = np.full(shells + (n_load,), np.nan)
+            for (t, h), (_, ps) in served.items():
+                if (t, h) in coarser:
+                    cps = coarser[t, h][1]
+                    j = (index["t_over_R"][t], index["h_over_R"][h])
+                    n = len(ps.loading_delta)
+                    err[j][:n] = curve_error(ps.loading_delta, ps.loading_P,
+                                             cps.loading_delta, cps.loading_P)
+            data["loading_P_error"] = (("C10", *L), force_N(err[None], c, R), _attrs(
+                "N", "discretisation error estimate of the loading P (NaN: beyond the "
+                     "coarser mesh's loading)"))
 
     C10_attrs = _attrs("MPa", "neo-Hookean constant C10 (shear modulus / 2)")
     gamma_attrs = _attrs(GAMMA_UNITS, "work of adhesion gamma")
@@ -416,6 +475,54 @@ _INDEX_DIMS = {
     "triangle": "plotting triangle (8 per quadratic element)",
     "vertex": "vertex of a triangle",
 }
+
+
+# what the solver checked per shell: stats key -> (variable, units, long_name, kind)
+_CHECKS = {
+    "delta_reached": ("loading_delta_reached", "mm", "deepest rim displacement the loading "
+                      "reached (below delta_max: see loading_stopped_by)", "length"),
+    "J_min": ("J_min", "1", "smallest pointwise volume ratio J over the loading states", "1"),
+    "J_max": ("J_max", "1", "largest pointwise volume ratio J over the loading states", "1"),
+    "detF_min": ("detF_min", "1", "smallest in-plane det F over the loading states", "1"),
+    "distortion_min": ("distortion_min", "1", "smallest within-element det F ratio over "
+                       "the loading states", "1"),
+    "relaxation_J_min": ("relaxation_J_min", "1", "smallest pointwise J over the relaxation "
+                         "paths (reported, not refused: crack tip)", "1"),
+    "relaxation_J_max": ("relaxation_J_max", "1", "largest pointwise J over the relaxation "
+                         "paths (reported, not refused: crack tip)", "1"),
+    "inversion_delta": ("inversion_delta", "mm", "rim displacement where the contact zone's "
+                        "centre first left the plane (NaN: never)", "length"),
+    "inversion_a": ("inversion_a", "mm", "contact radius where the contact zone's centre "
+                    "first left the plane (NaN: never)", "length"),
+    "inverted_paths": ("inverted_paths", "1", "relaxation paths whose contact zone inverted "
+                       "(left out of the energy method)", "1"),
+}
+
+
+def _checks(served, index, shells, C10s, R) -> dict:
+    """Per shell: how far the loading got and why it stopped, the worst element quality,
+    where the contact zone inverted; with C10, the largest gamma every pair reached."""
+    values = {k: np.full(shells, np.nan) for k in _CHECKS}
+    stopped = np.full(shells, "", dtype=object)
+    G = np.full(shells, np.nan)
+    for (t, h), (_, ps) in served.items():
+        j = (index["t_over_R"][t], index["h_over_R"][h])
+        for k in _CHECKS:
+            v = ps.stats.get(k)
+            values[k][j] = np.nan if v is None else float(v)
+        stopped[j] = ps.stats.get("loading_stopped_by") or ""
+        g = ps.stats.get("G_max_reached")
+        G[j] = np.nan if g is None else float(g)
+    S = ("t_over_R", "h_over_R")
+    out = {}
+    for k, (name, units, long_name, kind) in _CHECKS.items():
+        v = length_mm(values[k], R) if kind == "length" else values[k]
+        out[name] = (S, v, _attrs(units, long_name))
+    out["loading_stopped_by"] = (S, stopped, _attrs(
+        "1", "why the loading stopped before delta_max (empty: it reached delta_max)"))
+    out["G_max_reached"] = (("C10", *S), G[None] * C10s[:, None, None] * R * 1e3, _attrs(
+        GAMMA_UNITS, "largest gamma every pair of neighbouring relaxation paths reached"))
+    return out
 
 
 def _padded(shells, items, width):
@@ -535,7 +642,8 @@ def _global_attrs(plan: Plan, history: str) -> dict:
 # the study file's keys and the attributes that hold them (lists of numbers: arrays)
 _SCALAR_KEYS = {"name": "study_name", "description": "study_description", "R_mm": "R_mm",
                 "interface": "interface", "mesh": "mesh",
-                "delta_max_over_R": "delta_max_over_R"}
+                "delta_max_over_R": "delta_max_over_R", "error_bars": "error_bars",
+                "task_timeout_s": "task_timeout_s"}
 _GROUPS = {"base": "base_", "sweeps": "sweep_", "grid": "grid_"}
 _OUTPUTS = "output_"
 
@@ -545,6 +653,8 @@ def study_attrs(study: dict) -> dict:
     numbers and strings: study_name, R_mm, base_C10_MPa, sweep_gamma_J_m2 (array), ...,
     output_loading_curves (1 or 0)."""
     out = {a: study[k] for k, a in _SCALAR_KEYS.items() if k in study}
+    if "error_bars" in out:
+        out["error_bars"] = int(out["error_bars"])   # netCDF has no booleans
     for group, prefix in _GROUPS.items():
         for f, v in study.get(group, {}).items():
             out[prefix + f] = float(v) if group == "base" else np.asarray(v, dtype=float)
@@ -557,9 +667,11 @@ def study_of(ds: xr.Dataset) -> dict:
     `study.config.validate` turns it back into a Study."""
     a = ds.attrs
     out = {k: a[name] for k, name in _SCALAR_KEYS.items() if name in a}
-    for k in ("R_mm", "delta_max_over_R"):
+    for k in ("R_mm", "delta_max_over_R", "task_timeout_s"):
         if k in out:
             out[k] = float(out[k])
+    if "error_bars" in out:
+        out["error_bars"] = bool(out["error_bars"])
     for group, prefix in _GROUPS.items():
         values = {f: a[prefix + f] for f in FACTORS + COEFFICIENTS + CAVITY_FACTORS
                   if prefix + f in a}

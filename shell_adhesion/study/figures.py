@@ -81,7 +81,9 @@ def _axes(given, n, figsize, **subplots):
 
 def _drawn(artist) -> bool:
     """Whether an artist shows something: a line with a visible segment or marker, a
-    non-empty patch collection."""
+    non-empty patch collection, an error-bar plot whose line shows."""
+    if hasattr(artist, "lines"):        # ErrorbarContainer: its data line decides
+        return artist.lines[0] is not None and _drawn(artist.lines[0])
     if hasattr(artist, "get_xydata"):
         xy = artist.get_xydata()
         n = int(np.isfinite(xy).all(axis=1).sum()) if len(xy) else 0
@@ -435,9 +437,9 @@ def _value_label(dim, v):
 
 
 def fig_pull_off(ds, axes=None):
-    """Fig. 6b: |P*| against each swept parameter, with JKR (1.5 pi R gamma) and the
-    linear-shell law eq. 3 with eta fitted over the evaluated shells (t/R < 1; all points
-    if there are none).  Four Axes."""
+    """Fig. 6b: |P*| against each swept parameter (with its error bar when the cube has
+    them), with JKR (1.5 pi R gamma) and the linear-shell law eq. 3 with eta fitted over the
+    evaluated shells (t/R < 1; all points if there are none).  Four Axes."""
     _any_ok(ds)
     name, ds, others = _base_and_others(ds)     # eta is fitted for the base solid
     p = base_point(ds)
@@ -458,8 +460,13 @@ def fig_pull_off(ds, axes=None):
         q = [dict(p, **{dim: float(v)}) for v in x]
         jkr = [-jkr_P_star_N(R, c["gamma"]) for c in q]
         law = [fit.eta * shell_law_scale_N(R, c["t_over_R"] * R, c["C10"], c["gamma"]) for c in q]
-        ax.plot(x, -P.values, "o-", color=ours,
-                label="|P*| (this study)" if name is None else f"|P*|, {name} (base)")
+        label = "|P*| (this study)" if name is None else f"|P*|, {name} (base)"
+        if "P_star_error" in ds:     # the discretisation error bar (solver.error_bars)
+            err = along(ds, "P_star_error", dim).reindex({dim: P[dim]}).values
+            ax.errorbar(x, -P.values, yerr=err, fmt="o-", color=ours, capsize=3,
+                        label=label + " +- error bar")
+        else:
+            ax.plot(x, -P.values, "o-", color=ours, label=label)
         ax.plot(x, jkr, "--", marker="x", color=jkr_c, label="JKR 1.5 pi R gamma")
         ax.plot(x, law, ":", marker="+", color=law_c,
                 label=f"linear-shell law eq. 3, eta = {fit.eta:.2f} (fit over {fit.n} cases)")

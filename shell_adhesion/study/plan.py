@@ -7,6 +7,8 @@ gamma / (C10 R) asked of it; that value is rounded up to the ladder 1, 2, 5 x 10
 studies with nearby values share their paths.  The catalogue may serve a key with a set
 that reaches further (larger delta_max or gamma_max); `restrict` cuts such a set back to
 the requested delta_max, so the results do not depend on what else the catalogue holds.
+With error bars (the study's default), each shell has a companion on the next coarser mesh
+(`Plan.error_shells`): a set of its own, keyed and stored like any other.
 
 Another solid (`solver.material.Material`) enters the plan by its ratios to C10 (C01/C10,
 C20/C10, C30/C10, Jm, D1 C10): they are FE dimensions and part of every shell's key, while
@@ -30,6 +32,7 @@ from shell_adhesion.solver.case import PathSet
 from shell_adhesion.solver.cavity import OPEN, Cavity
 from shell_adhesion.solver.geometry import shown
 from shell_adhesion.solver.material import NEO_HOOKE, Material
+from shell_adhesion.solver.mesh import coarser_mesh
 from shell_adhesion.solver.path import Settings
 from shell_adhesion.solver.scaling import gamma_hat
 
@@ -83,6 +86,12 @@ class Plan:
     materials: dict = None      # swept ratio values (tuple) -> Material
     cavities: dict = None       # closed cavity: point -> Cavity (None: open)
     cavity_axes: dict = None    # swept cavity parameter (p_kPa) -> sorted tuple of values
+    error_shells: tuple = ()    # each shell on the next coarser mesh (error bars), same order
+
+    @property
+    def all_shells(self) -> tuple:
+        """The FE path sets to serve: the shells, then their error-bar companions."""
+        return self.shells + self.error_shells
 
     def shell(self, t_over_R, h_over_R, material: Material = None) -> Shell:
         for s in self.shells:
@@ -98,7 +107,9 @@ class Plan:
         n = len(FACTORS)
         points = tuple(p[:n] for p in self.points if tuple(p[n:]) == tuple(values))
         shells = tuple(s for s in self.shells if s.material == m)
-        return replace(self, points=points, shells=shells, ratio_axes=None, materials=None)
+        errors = tuple(s for s in self.error_shells if s.material == m)
+        return replace(self, points=points, shells=shells, ratio_axes=None, materials=None,
+                       error_shells=errors)
 
     def for_cavity(self, C10_MPa, values: tuple = ()) -> "Plan":
         """The part of a closed-cavity plan at one C10 and swept cavity `values` (one per
@@ -110,8 +121,9 @@ class Plan:
         cavity = self.cavities[next(p for p in self.points
                                     if p[0] == C10_MPa and tuple(p[n:]) == tuple(values))]
         shells = tuple(s for s in self.shells if s.cavity == cavity)
+        errors = tuple(s for s in self.error_shells if s.cavity == cavity)
         return replace(self, points=points, shells=shells, cavities=None, cavity_axes=None,
-                       axes={**self.axes, "C10_MPa": (C10_MPa,)})
+                       axes={**self.axes, "C10_MPa": (C10_MPa,)}, error_shells=errors)
 
     def cavity_groups(self) -> list:
         """The (C10, swept cavity values) of a closed-cavity plan, sorted."""
@@ -124,6 +136,13 @@ def shell_key(s: Shell) -> tuple:
     after them when it is closed (study.dataset.build reads it)."""
     key = (s.t_over_R, s.h_over_R, s.material)
     return key + (s.cavity,) if s.cavity.closed else key
+
+
+def served_key(s: Shell, plan: Plan) -> tuple:
+    """Key of a served set in the run's `served` map: `shell_key`, and "coarser" after it
+    for an error-bar companion (study.dataset.build reads it)."""
+    key = shell_key(s)
+    return key + ("coarser",) if s in plan.error_shells else key
 
 
 def make_plan(study: Study, settings: Settings = Settings(),
@@ -153,19 +172,24 @@ def make_plan(study: Study, settings: Settings = Settings(),
         g = gamma_hat(gamma, C10, study.R_mm)
         at = (t, h, p[4:4 + len(swept)], cavities.get(p, OPEN))
         need[at] = max(need.get(at, 0.0), g)
-    shells = []
+    shells, errors = [], []
     for (t, h, values, cavity), g in sorted(
             need.items(), key=lambda kv: kv[0][:3] + (tuple(kv[0][3].as_dict().values()),)):
         m = solids[values]
         key = pathset_key(t, h, study.interface, study.mesh, study.delta_max_over_R,
                           gamma_max_bucket(g), settings, m, cavity)
         shells.append(Shell(t, h, g, key, fingerprint(key), m, cavity))
+        if study.error_bars:    # the same shell on the next coarser mesh: a set of its own
+            key = pathset_key(t, h, study.interface, coarser_mesh(study.mesh),
+                              study.delta_max_over_R, gamma_max_bucket(g), settings, m, cavity)
+            errors.append(Shell(t, h, g, key, fingerprint(key), m, cavity))
     ratio_axes = ({r: tuple(sorted({p[4 + j] for p in points})) for j, r in enumerate(swept)}
                   if swept else None)
     cavity_axes = ({c: tuple(sorted({p[4 + len(swept) + j] for p in points}))
                     for j, c in enumerate(study.swept_cavity)} or None)
     return Plan(study, axes, tuple(points), tuple(shells), settings, ratio_axes,
-                solids if swept else None, cavities=cavities or None, cavity_axes=cavity_axes)
+                solids if swept else None, cavities=cavities or None, cavity_axes=cavity_axes,
+                error_shells=tuple(errors))
 
 
 def restrict(ps: PathSet, delta_max: float) -> PathSet:

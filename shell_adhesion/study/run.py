@@ -34,14 +34,14 @@ from shell_adhesion.solver.case import (cavity_lift, loading_views, pathset_of,
                                         timing_stats)
 from shell_adhesion.solver.cavity import OPEN
 from shell_adhesion.solver.material import NEO_HOOKE
-from shell_adhesion.solver.path import LoadingPath, Settings
+from shell_adhesion.solver.path import Settings
 from shell_adhesion.solver.pathset_dataset import (from_dataset, relaxation_from_dataset,
                                                    relaxation_to_dataset, to_dataset)
 
 from . import dataset, interrupt
 from .config import StudyError, load_study, validate
 from .keys import relaxation_part, solver_source_sha256
-from .plan import Plan, Shell, make_plan, restrict, shell_key
+from .plan import Plan, Shell, make_plan, restrict, served_key
 from .products import Products, write_products
 from .progress import Progress
 
@@ -86,18 +86,36 @@ def _check_source(source_sha256):
             "restart the client process and the workers")
 
 
+class TaskTimeout(RuntimeError):
+    """A task ran past the study's task_timeout_s (checked after every converged state)."""
+
+
+def _deadline(timeout_s, what):
+    """progress(delta) callback raising TaskTimeout once `timeout_s` seconds have passed."""
+    if timeout_s is None:
+        return None
+    t0 = time.perf_counter()
+
+    def check(delta):
+        if time.perf_counter() - t0 > timeout_s:
+            raise TaskTimeout(f"{what} ran past task_timeout_s = {timeout_s:g} s "
+                              f"(at delta/R = {delta:.4g})")
+    return check
+
+
 def loading_task(t, h, interface, mesh, delta_max, settings, source_sha256=None,
-                 material=NEO_HOOKE, cavity=OPEN):
+                 material=NEO_HOOKE, timeout_s=None, cavity=OPEN):
     """Loading path of one shell of `material` and `cavity`: (loading without displacement
     fields, relaxation starts, info, loading views); a closed cavity's info holds
-    `cavity_lift` (solver.case.cavity_lift), which its relaxation tasks need."""
+    `cavity_lift` (solver.case.cavity_lift), which its relaxation tasks need.  TaskTimeout
+    past `timeout_s` seconds."""
     _check_source(source_sha256)
     t0 = time.perf_counter()
-    d, loading = solve_loading(t, h, interface, mesh, delta_max, settings, material=material,
-                               cavity=cavity)
+    d, loading = solve_loading(t, h, interface, mesh, delta_max, settings,
+                               _deadline(timeout_s, "the loading"), material, cavity=cavity,
+                               stop_at_limit=True)
     starts = relaxation_starts(loading, d.capmesh)
-    light = LoadingPath(loading.interface,
-                        tuple(replace(s, x=s.x[:0]) for s in loading.states), loading.timer)
+    light = replace(loading, states=tuple(replace(s, x=s.x[:0]) for s in loading.states))
     info = dict(dofs=int(d.ndof), elements=int(d.capmesh.mesh.nelements),
                 loading_s=time.perf_counter() - t0)
     if cavity.closed:
@@ -106,13 +124,14 @@ def loading_task(t, h, interface, mesh, delta_max, settings, source_sha256=None,
 
 
 def relax_task(t, h, interface, mesh, start, gamma_max, settings, source_sha256=None,
-               views=False, material=NEO_HOOKE, cavity=OPEN, lift=0.0):
+               views=False, material=NEO_HOOKE, timeout_s=None, cavity=OPEN, lift=0.0):
     """One relaxation path: (Relaxation, seconds); `views` keeps its profiles; a closed
-    `cavity` needs its loading's `lift`."""
+    `cavity` needs its loading's `lift`.  TaskTimeout past `timeout_s` seconds."""
     _check_source(source_sha256)
     t0 = time.perf_counter()
     r = relaxation_task(t, h, interface, mesh, start, gamma_max, settings, views,
-                        material=material, cavity=cavity, lift=lift)
+                        material=material, cavity=cavity, lift=lift,
+                        progress=_deadline(timeout_s, "a relaxation path"))
     return r, time.perf_counter() - t0
 
 
@@ -266,9 +285,9 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
     owner = {}                  # future -> (job, relaxation index or None)
     pending = set()
     for s in shells:
-        f = client.submit(loading_task, s.t_over_R, s.h_over_R, st.interface, st.mesh,
+        f = client.submit(loading_task, s.t_over_R, s.h_over_R, st.interface, s.key["mesh"],
                           st.delta_max_over_R, plan.settings, s.key["solver_source"],
-                          s.material, pure=False, cavity=s.cavity,
+                          s.material, st.task_timeout_s, pure=False, cavity=s.cavity,
                           key=f"loading-{s.fingerprint[:12]}-{uuid.uuid4().hex[:8]}")
         owner[f] = (_Job(s, time.perf_counter()), None)
         pending.add(f)
@@ -309,9 +328,10 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
                      relaxation_newton_iterations=sum(r.newton_iterations for r in job.relaxations),
                      assembly_s=timer.assembly, linear_solve_s=timer.factor + timer.solve,
                      relaxation_s=job.seconds, timing=timing_stats(timer, job.relaxations))
-        ps = pathset_of(s.t_over_R, s.h_over_R, st.interface, st.mesh, st.delta_max_over_R,
-                        s.gamma_max_hat, job.loading, job.relaxations, stats, job.views,
-                        cavity=s.cavity, lift=job.info.get("cavity_lift", 0.0))
+        ps = pathset_of(s.t_over_R, s.h_over_R, st.interface, s.key["mesh"],
+                        st.delta_max_over_R, s.gamma_max_hat, job.loading, job.relaxations,
+                        stats, job.views, cavity=s.cavity,
+                        lift=job.info.get("cavity_lift", 0.0))
         summary = dict(relaxations=len(ps.relaxations), loading_states=len(ps.loading_delta),
                        newton_iterations=stats["loading_newton_iterations"]
                        + stats["relaxation_newton_iterations"],
@@ -351,10 +371,11 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
                         job.seconds += seconds
                         tally.relaxations_reused += 1
                         continue
-                g = client.submit(relax_task, s.t_over_R, s.h_over_R, st.interface, st.mesh,
+                g = client.submit(relax_task, s.t_over_R, s.h_over_R, st.interface, s.key["mesh"],
                                   start, s.gamma_max_hat, plan.settings,
-                                  s.key["solver_source"], views, s.material, pure=False,
-                                  cavity=s.cavity, lift=job.info.get("cavity_lift", 0.0),
+                                  s.key["solver_source"], views, s.material,
+                                  st.task_timeout_s, pure=False, cavity=s.cavity,
+                                  lift=job.info.get("cavity_lift", 0.0),
                                   key=f"relax-{s.fingerprint[:12]}-{i}-{uuid.uuid4().hex[:8]}")
                 owner[g] = (job, (i, part))
                 pending.add(g)
@@ -430,7 +451,7 @@ def _held_by_index(plan: Plan, catalogue) -> int:
     if not (directory / INDEX).exists():
         return 0
     with Catalogue(directory, create=False) as cat:
-        return sum(bool(cat.candidates(s.key)) for s in plan.shells)
+        return sum(bool(cat.candidates(s.key)) for s in plan.all_shells)
 
 
 def execute(study, out=None, catalogue=None, scheduler=None, progress=True, workers=None,
@@ -447,7 +468,7 @@ def execute(study, out=None, catalogue=None, scheduler=None, progress=True, work
     output = out_dir / f"{study.name}.nc"
     with _quiet_dask():
         client = None
-        if scheduler and _held_by_index(plan, catalogue) < len(plan.shells):
+        if scheduler and _held_by_index(plan, catalogue) < len(plan.all_shells):
             client = _connect_external(scheduler)       # before anything is created
         try:
             with interrupt.watched():
@@ -490,13 +511,13 @@ def _execute(plan, out_dir, output, catalogue, scheduler, client, show, workers,
         run_id = cat.start_run(study.name, study.source, study.sha256, output,
                                solver.__version__)
         served, reused, missing = {}, [], []
-        for s in plan.shells:
+        for s in plan.all_shells:
             hit = cat.fetch(s.key)
             if hit is None:
                 missing.append(s)
             else:
                 entry, ds = hit
-                served[shell_key(s)] = (
+                served[served_key(s, plan)] = (
                     entry.fingerprint, restrict(from_dataset(ds), study.delta_max_over_R))
                 reused.append(s.fingerprint)
         progress = Progress([("loading paths", len(missing), "shells"),
@@ -522,9 +543,8 @@ def _execute(plan, out_dir, output, catalogue, scheduler, client, show, workers,
                                 progress=progress)
         for s in missing:
             if s.fingerprint in tally.computed:
-                served[shell_key(s)] = (
-                    s.fingerprint, tally.computed[s.fingerprint])
-        failed_th = {shell_key(s): tally.failed[s.fingerprint]
+                served[served_key(s, plan)] = (s.fingerprint, tally.computed[s.fingerprint])
+        failed_th = {served_key(s, plan): tally.failed[s.fingerprint]
                      for s in missing if s.fingerprint in tally.failed}
         history = (f"{time.strftime('%Y-%m-%dT%H:%M:%S%z')} shell-adhesion "
                    f"{solver.__version__}: run_study {study.source}")
@@ -637,7 +657,7 @@ def summary(outcome: Outcome, ds=None) -> str:
         f"{len(ax['t_over_R'])} x h/R {len(ax['h_over_R'])} x gamma {len(ax['gamma_J_m2'])}, "
         f"requested points: {len(p.points)}; interface {p.study.interface}, mesh {p.study.mesh}",
         *_cavity_lines(p),
-        f"FE path sets: {len(p.shells)} needed, {len(outcome.computed)} computed, "
+        f"FE path sets: {len(p.all_shells)} needed, {len(outcome.computed)} computed, "
         f"{len(outcome.reused)} reused, {len(outcome.failed)} failed "
         f"(catalogue {outcome.catalogue})",
         f"points: {c['ok']} ok, {c['out of range']} out of range, {c['solver failed']} "
@@ -646,9 +666,10 @@ def summary(outcome: Outcome, ds=None) -> str:
     if outcome.relaxations_reused:
         lines.append(f"relaxation paths: {outcome.relaxations_computed} solved, "
                      f"{outcome.relaxations_reused} kept from an interrupted run")
-    for s in p.shells:
+    for s in p.all_shells:
         if s.fingerprint in outcome.failed:
-            lines.append(f"  failed t/R={s.t_over_R:g} h/R={s.h_over_R:g}: "
+            companion = " (coarser mesh, error bars)" if s in p.error_shells else ""
+            lines.append(f"  failed t/R={s.t_over_R:g} h/R={s.h_over_R:g}{companion}: "
                          f"{outcome.failed[s.fingerprint]}")
     if ds is not None and c["out of range"]:
         bad = ds["status"].values == "out of range"
@@ -701,15 +722,15 @@ def dry_run(study, catalogue=None, workers=None, scheduler=None) -> str:
     held, parts, times = 0, 0, []
     if (directory / INDEX).exists():
         with Catalogue(directory, create=False) as cat:
-            for s in plan.shells:
+            for s in plan.all_shells:
                 if cat.candidates(s.key):
                     held += 1
                 else:
                     parts += cat.count_parts(s.key)
             times = cat.timings(study.interface, study.mesh)
-    todo = len(plan.shells) - held
+    todo = len(plan.all_shells) - held
     lines = [f"study {study.name} ({study.source}): {len(plan.points)} requested points, "
-             f"{len(plan.shells)} distinct FE problems (path sets of one t/R, h/R each); "
+             f"{len(plan.all_shells)} distinct FE problems (path sets of one t/R, h/R each); "
              f"interface {study.interface}, mesh {study.mesh}, "
              f"delta_max/R {study.delta_max_over_R:g}",
              *_cavity_lines(plan),

@@ -28,6 +28,14 @@ _CASE_COLUMNS = {"C10": "C10", "gamma": "gamma", "P_star": "P*", "delta_star": "
 
 
 @dataclass(frozen=True)
+class WithError:
+    """A value and its error bar: "value ± error" in Markdown and LaTeX; CSV gives the
+    value in its column and the error in the column "<label> error" after the values."""
+    value: float
+    error: float
+
+
+@dataclass(frozen=True)
 class Table:
     """A titled table: column headers (units in brackets), rows of numbers or text
     (None or NaN: missing), and notes printed under it (Markdown and LaTeX only)."""
@@ -56,6 +64,14 @@ def cases_table(ds: xr.Dataset) -> Table:
                *(_header(ds, k, label) for k, label in _CASE_COLUMNS.items()))
     data = [c[k].values for k in ("t_mm", "h_mm", *ratios, *_CASE_COLUMNS)]
     rows = tuple((R, *(float(x[i]) for x in data)) for i in range(c.sizes["case"]))
+    with_error = [k for k in _CASE_COLUMNS if f"{k}_error" in c]
+    if with_error:          # value ± error (Markdown, LaTeX); the errors' own columns (CSV)
+        first = len(columns) - len(_CASE_COLUMNS)
+        keys = list(_CASE_COLUMNS)
+        rows = tuple(
+            (*row[:first], *(WithError(v, float(c[f"{k}_error"].values[i])) if k in with_error
+                             else v for k, v in zip(keys, row[first:])))
+            for i, row in enumerate(rows))
     study = ds.attrs.get("study_name", "")
     material = f", material {ds.attrs['material']}" if "material" in ds.attrs else ""
     title = (f"Pull-off of each case (study {study}, mesh {ds.attrs.get('mesh', '?')}, "
@@ -110,11 +126,21 @@ def _missing(x) -> bool:
 
 
 def _cell(x, fmt):
+    if isinstance(x, WithError):
+        if fmt == "csv" or _missing(x.value) or _missing(x.error):
+            return _cell(x.value, fmt)
+        return f"{x.value:.{DIGITS}g} ± {x.error:.2g}"
     if _missing(x):
         return "" if fmt == "csv" else "—"
     if isinstance(x, numbers.Real) and not isinstance(x, bool):
         return repr(float(x)) if fmt == "csv" else f"{float(x):.{DIGITS}g}"
     return str(x).replace("|", "\\|") if fmt == "md" else str(x)
+
+
+def _error_label(column: str) -> str:
+    """'P* [N]' -> 'P* error [N]'."""
+    name, sep, unit = column.partition(" [")
+    return f"{name} error{sep}{unit}"
 
 
 def render(table: Table, fmt: str) -> str:
@@ -123,14 +149,17 @@ def render(table: Table, fmt: str) -> str:
         raise ValueError(f"format {fmt!r}: must be one of {', '.join(FORMATS)}")
     cells = [[_cell(x, fmt) for x in row] for row in table.rows]
     if fmt == "csv":
+        errors = [j for j, x in enumerate(table.rows[0]) if isinstance(x, WithError)] \
+            if table.rows else []
         out = io.StringIO()
         writer = csv.writer(out, lineterminator="\n")
-        writer.writerow(table.columns)
-        writer.writerows(cells)
+        writer.writerow([*table.columns, *(_error_label(table.columns[j]) for j in errors)])
+        writer.writerows([*row, *(_cell(r[j].error, fmt) for j in errors)]
+                         for row, r in zip(cells, table.rows))
         return out.getvalue()
     lead = "" if fmt == "md" else "% "
     if table.rows:
-        numeric = [all(_missing(x) or isinstance(x, numbers.Real) for x in col)
+        numeric = [all(_missing(x) or isinstance(x, (numbers.Real, WithError)) for x in col)
                    for col in zip(*table.rows)]
         text = tabulate(cells, headers=table.columns, disable_numparse=True,
                         tablefmt="github" if fmt == "md" else "latex_booktabs",

@@ -1,0 +1,105 @@
+"""Error bars (issue 10, item 7): the rule (solver.error_bars), the study cube's
+`<name>_error` variables through the catalogue, tables printing value +- error, Fig. 6's
+error bars, trend verdicts counting a step only beyond the combined error, and (slow) the
+base shell's default-mesh P* +- 2 error bars holding the fine-mesh P*."""
+import csv
+import io
+
+import matplotlib
+import numpy as np
+import pytest
+import xarray as xr
+
+from shell_adhesion.solver.error_bars import ORDER, SAFETY, curve_error, error_bar
+from shell_adhesion.study import analysis, figures, tables
+
+matplotlib.use("Agg")
+
+
+def test_rule():
+    assert error_bar(-1.0, -1.01) == pytest.approx(SAFETY * 0.01 / (2 ** ORDER - 1))
+    assert np.isnan(error_bar(1.0, np.nan))
+    e = curve_error([0.0, 0.5, 2.0], [0.0, 1.0, 4.0], [0.0, 1.0], [0.0, 2.2])
+    assert e[0] == 0 and e[1] == pytest.approx(error_bar(1.0, 1.1)) and np.isnan(e[2])
+
+
+def test_trend_counts_a_step_only_beyond_the_combined_error():
+    values = [1.00, 1.02, 1.04]
+    assert analysis.trend_of(values, 0.001) == "increasing"
+    assert analysis.trend_of(values, 0.001, errors=[0.011, 0.011, 0.011]) == "increasing"
+    # each step 0.02 within the sum of two 0.015 bars, the whole 0.04 beyond it
+    assert analysis.trend_of(values, 0.001, errors=[0.015] * 3) == "increasing"
+    assert analysis.trend_of(values, 0.001, errors=[0.03] * 3) == "flat"
+    # a missing bar falls back to the mesh uncertainty: 0.04 > 0.001 + 0.03
+    assert analysis.trend_of(values, 0.001, errors=[np.nan, 0.03, 0.03]) == "increasing"
+
+
+@pytest.fixture(scope="module")
+def with_errors(small_study):
+    """The small study's cube with error bars of 1 % on every pull-off value (the
+    rendering does not care where they came from)."""
+    with xr.open_dataset(small_study) as ds:
+        ds = ds.load()
+    for k in ("P_star", "delta_star", "a_star", "P_dagger", "delta_dagger", "a_dagger", "a0",
+              "eta"):
+        ds[f"{k}_error"] = 0.01 * abs(ds[k])
+        ds[f"{k}_error"].attrs = dict(units=ds[k].attrs.get("units", "1"), long_name="error")
+    return ds
+
+
+def test_tables_print_value_plus_minus_error(with_errors):
+    table = tables.cases_table(with_errors)
+    md = tables.render(table, "md")
+    assert md.count(" ± ") >= 7 * 7      # 7 cases, every value but the missing a0's
+    text = tables.render(table, "csv")
+    rows = list(csv.reader(io.StringIO(text)))
+    header = rows[0]
+    assert "P* error [N]" in header and "eta error [1]" in header
+    i, j = header.index("P* [N]"), header.index("P* error [N]")
+    for row in rows[1:]:
+        assert float(row[j]) == pytest.approx(0.01 * abs(float(row[i])), rel=1e-12)
+
+
+def test_fig6_draws_error_bars(with_errors):
+    axes = figures.fig_pull_off(with_errors)
+    assert any(c.__class__.__name__ == "ErrorbarContainer" for ax in axes for c in ax.containers)
+    sentence = analysis.trend(with_errors, "gamma").sentence
+    assert "+-" in sentence and "error bars" in sentence
+
+
+STUDY = """\
+name: eb
+R_mm: 20
+base: {C10_MPa: 0.3, t_over_R: 0.15, h_over_R: 1.0, gamma_J_m2: 30}
+mesh: coarse
+delta_max_over_R: 0.05
+"""
+
+
+def test_study_error_bars_through_the_catalogue(tmp_path):
+    """The coarser mesh's set is a catalogue entry like any other: a rerun solves nothing."""
+    from shell_adhesion.study.run import execute
+    (tmp_path / "eb.yaml").write_text(STUDY)
+    out = execute(tmp_path / "eb.yaml", tmp_path / "r", catalogue=tmp_path / "cat",
+                  progress=False, workers=1)
+    assert out.exit_code == 0 and len(out.computed) == 2
+    ds = out.dataset
+    P, e = float(ds["P_star"].squeeze()), float(ds["P_star_error"].squeeze())
+    assert 0 < e < 0.05 * abs(P)
+    assert np.isfinite(ds["loading_P_error"].values).any()
+    again = execute(tmp_path / "eb.yaml", tmp_path / "r2", catalogue=tmp_path / "cat",
+                    progress=False, workers=1)
+    assert again.computed == [] and len(again.reused) == 2
+    assert float(again.dataset["P_star_error"].squeeze()) == e
+
+
+@pytest.mark.slow
+def test_base_shell_default_error_bar_holds_the_fine_value():
+    """Default mesh P* +- 2 error bars holds the fine-mesh P*, and the error bar is below
+    2 % of P* (paths to delta = 0.05 R, beyond the pull-off; the fine mesh takes minutes)."""
+    from conftest import GAMMA_HAT, base_case
+    P = {m: base_case(m, "no_slip", 0.006, 0.05)[0].pull_off(GAMMA_HAT)[1].P_star
+         for m in ("coarse", "default", "fine")}
+    err = float(error_bar(P["default"], P["coarse"]))
+    assert abs(P["fine"] - P["default"]) <= 2 * err
+    assert err < 0.02 * abs(P["default"])

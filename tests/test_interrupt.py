@@ -42,6 +42,18 @@ def test_ctrl_c_outside_deferred_raises_as_usual():
             pytest.fail("Ctrl-C did not raise")
 
 
+def test_the_hard_exit_is_disarmed_outside_its_block():
+    """An in-process `run` (a test, a notebook) leaves nothing armed behind it."""
+    with interrupt.hard_exit_after(0.2, "never printed"):
+        pass
+    with pytest.raises(KeyboardInterrupt):
+        with interrupt.watched():
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(1.0)
+    assert interrupt._timer is None
+    time.sleep(0.4)                         # the process is still here
+
+
 # a run whose shutdown after Ctrl-C never ends (as a dask close that waits forever would)
 HUNG_RUN = textwrap.dedent("""
     import sys, time

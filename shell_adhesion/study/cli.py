@@ -173,12 +173,12 @@ def _run_study(ns):
             print(dry_run(ns.study, ns.catalogue, ns.workers, ns.scheduler))
             return 0
         kept_in = ns.catalogue if ns.catalogue is not None else default_dir()
-        interrupt.hard_exit_after(
-            HARD_EXIT_S, "shell-adhesion: interrupted: the relaxation paths finished and are "
-            f"kept in the catalogue {kept_in} (shutting down took over {HARD_EXIT_S:g} s and "
-            "was cut short); run again to resume")
-        ds = run_study(ns.study, out=ns.out, catalogue=ns.catalogue, scheduler=ns.scheduler,
-                       progress=not ns.quiet, workers=ns.workers)
+        with interrupt.hard_exit_after(
+                HARD_EXIT_S, "shell-adhesion: interrupted: the relaxation paths finished and "
+                f"are kept in the catalogue {kept_in} (shutting down took over "
+                f"{HARD_EXIT_S:g} s and was cut short); run again to resume"):
+            ds = run_study(ns.study, out=ns.out, catalogue=ns.catalogue,
+                           scheduler=ns.scheduler, progress=not ns.quiet, workers=ns.workers)
     except RunInputError as e:
         print(f"shell-adhesion: error: {e.flag}: {e.detail}", file=sys.stderr)
         return 2

@@ -18,7 +18,8 @@ EXIT_INTERRUPTED = 130
 
 _requested = threading.Event()
 _deferring = False
-_hard_exit = None          # (seconds, line) set by the command line
+_hard_exit = None          # (seconds, line) while the command line runs a study
+_timer = None              # the armed hard exit
 
 
 def requested() -> bool:
@@ -32,15 +33,29 @@ def check():
         raise KeyboardInterrupt
 
 
+@contextmanager
 def hard_exit_after(seconds: float, line: str):
-    """After the first SIGINT, end the process (exit 130, `line` on stderr) if it is still
-    running `seconds` later.  For the command line: a notebook kernel must not exit."""
-    global _hard_exit
+    """Within this block, after the first SIGINT, end the process (exit 130, `line` on
+    stderr) if it is still running `seconds` later.  For the command line: a notebook
+    kernel must not exit.  Leaving the block normally disarms it; leaving it by Ctrl-C
+    keeps an armed bound, which then also bounds the interpreter's exit."""
+    global _hard_exit, _timer
     _hard_exit = (float(seconds), line)
+    try:
+        yield
+    except KeyboardInterrupt:       # the process is ending: the bound stays armed
+        raise
+    else:
+        if _timer is not None:
+            _timer.cancel()
+            _timer = None
+    finally:
+        _hard_exit = None
 
 
 def _arm_hard_exit():
-    if _hard_exit is None:
+    global _timer
+    if _hard_exit is None or _timer is not None:
         return
     seconds, line = _hard_exit
 
@@ -50,9 +65,9 @@ def _arm_hard_exit():
         finally:
             os._exit(EXIT_INTERRUPTED)
 
-    timer = threading.Timer(seconds, stop)
-    timer.daemon = True
-    timer.start()
+    _timer = threading.Timer(seconds, stop)
+    _timer.daemon = True
+    _timer.start()
 
 
 def _handle(signum, frame):

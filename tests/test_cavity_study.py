@@ -252,6 +252,7 @@ def test_pressure_sweep_equals_solve_case(tmp_path):
     assert apex.sel(p_kPa=5.0).item() < apex.sel(p_kPa=2.0).item() < 0
 
 
+@pytest.mark.slow      # CI time: see README (python -m pytest -m slow)
 def test_sealed_cube_is_cf_and_its_units_read(sealed_run, tmp_path):
     from test_cube import cf_high_priority_failures
     ds, tmp = sealed_run

@@ -49,6 +49,7 @@ def test_cf_compliance_checker_finds_no_high_priority_failure(small_study, tmp_p
     assert not failures, "\n".join(f"{name}: {m}" for name, msgs in failures for m in msgs)
 
 
+@pytest.mark.slow      # CI time: see README (python -m pytest -m slow)
 def test_cf_checker_catches_a_careless_write(ds, tmp_path):
     """The same cube written with xarray's defaults (64-bit indices, _FillValue on the
     coordinates) fails: the test above can fail."""

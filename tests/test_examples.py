@@ -2,6 +2,8 @@
 import importlib.util
 import pathlib
 
+import pytest
+
 from shell_adhesion.solver.scaling import force_N
 
 EXAMPLES = pathlib.Path(__file__).parent.parent / "examples"
@@ -24,6 +26,7 @@ def test_ex02_hertz_table():
     assert len(resolved) >= 2 and abs(resolved[:, 2] - 1).max() < 0.05
 
 
+@pytest.mark.slow      # CI time: see README (python -m pytest -m slow)
 def test_ex03_mooney_rivlin():
     """C01/C10 = 0.5 stiffens the shell (mu0 x 1.5): a more tensile P* and a smaller
     |delta_dagger| than neo-Hookean (C01 = 0), on the coarse mesh."""

@@ -225,6 +225,7 @@ def test_bad_run_arguments(tmp_path, case):
     assert time.time() - t0 < 60
 
 
+@pytest.mark.slow      # CI time: see README (python -m pytest -m slow)
 def test_lost_scheduler_one_line_then_resume(reference, dask_cluster, tmp_path):
     """Kill the scheduler in the middle: one line, non-zero exit, no cube; the rerun (on a
     local cluster) keeps what finished and equals an uninterrupted run."""
@@ -251,6 +252,7 @@ def test_lost_scheduler_one_line_then_resume(reference, dask_cluster, tmp_path):
     same_cube(again.dataset, reference.dataset)
 
 
+@pytest.mark.slow      # CI time: see README (python -m pytest -m slow)
 def test_lost_worker_same_results(reference, dask_cluster, tmp_path):
     """One of two workers killed in the middle: the run finishes with the same cube."""
     address, procs = dask_cluster(2)

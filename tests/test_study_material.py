@@ -1,6 +1,7 @@
 """A study with a material: one set of FE paths per swept ratio, the ratio a cube dimension,
 and C01/C10 = 0 exactly the neo-Hookean study (it shares its FE paths)."""
 import numpy as np
+import pytest
 import xarray as xr
 
 from shell_adhesion.study.run import execute
@@ -36,6 +37,7 @@ def run(tmp_path, name, text, cat):
         return outcome, ds.load()
 
 
+@pytest.mark.slow      # CI time: see README (python -m pytest -m slow)
 def test_c01_sweep_is_a_dimension_and_zero_is_neo_hooke(tmp_path):
     cat = tmp_path / "cat"
     nh_out, nh = run(tmp_path, "nh", NH, cat)

@@ -119,6 +119,7 @@ def test_local_cluster_solves_once(local):
     assert [r["status"] for r in list_entries(cat)] == ["ok"]
 
 
+@pytest.mark.slow      # CI time: see README (python -m pytest -m slow)
 def test_external_scheduler_same_numbers(local, scheduler, tmp_path):
     outcome, study, _, ds = local
     other = execute(study, tmp_path / "results", scheduler=scheduler, catalogue=tmp_path / "cat",

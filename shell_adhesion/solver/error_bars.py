@@ -11,7 +11,7 @@ Pure functions, any units (the error has the value's units); NaN where either va
 """
 import numpy as np
 
-ORDER = 1.0     # observed on the base shell (coarser -> coarse -> default -> fine), see README
+ORDER = 1.0     # assumed: on the base shell the three meshes give no clean order (README)
 SAFETY = 3.0    # Roache's factor for an order assumed, not observed per case
 
 

@@ -12,17 +12,18 @@ import time
 import numpy as np
 
 from .cavity import OPEN, Cavity, bind, first_touch, lifted
-from .energy import EnergySurface, energy_surface, equilibrium, pull_off
+from .energy import EnergySurface, OutOfRange, energy_surface, equilibrium, pull_off
 from .forms import Discretisation, discretise
 from .contact import check_interface
 from .geometry import GAMMA_MAX, Cap, InputError, check_delta_max, check_gamma, shown
 from .material import NEO_HOOKE, Material
-from .mesh import CapMesh, cap_mesh, mesh_spec
+from .mesh import CapMesh, cap_mesh, mesh_spec, uniform_radius
 from .path import LoadingPath, RelaxationPath, Settings, State, load, relax
 from .postprocess import StressMap, profile, spread, stress_map
 
 STEPS_PER_PATH = 8      # relaxation steps down to the stop criterion (about)
 G_SAFETY = 3.0          # relax until the flat-punch estimate of G exceeds G_SAFETY * gamma_max
+UNIFORM_SHARE = 0.9     # pull-off radii must lie within this share of the evenly meshed radius
 
 
 def flat_punch_G(start: State, s: State) -> float:
@@ -216,10 +217,37 @@ class PathSet:
         return out
 
     def pull_off(self, gamma: float, surface: EnergySurface = None):
-        """Equilibrium curve and pull-off for gamma / (C10 R)."""
+        """Equilibrium curve and pull-off for gamma / (C10 R).
+
+        Raises OutOfRange (a ValueError) where the paths cannot vouch for the pull-off:
+        its curve is not bracketed (solver.energy.pull_off); a pull-off radius lies beyond
+        UNIFORM_SHARE of the mesh's evenly meshed radius (`mesh.uniform_radius`); or a pair
+        of paths near a pull-off radius stopped before G reached gamma, so the curve is
+        bridged there (`unreached`).
+        """
         check_gamma(gamma, self.gamma_max)
         eq = equilibrium(surface or self.surface(), gamma)
-        return eq, pull_off(eq)
+        po = pull_off(eq)
+        limit = UNIFORM_SHARE * uniform_radius(mesh_spec(self.mesh))
+        for name, a in (("a*", po.a_star), ("a_dagger", po.a_dagger)):
+            if a > limit:
+                raise OutOfRange(
+                    f"gamma/(C10 R) = {gamma:g}: the pull-off radius {name} = {a:.4g} R lies "
+                    f"beyond {limit:.3g} R, where the {self.mesh} mesh's elements grow; the "
+                    f"energy method is biased there by the grading (1.35 % on P* measured for "
+                    f"t/R = 0.1), which the error bar cannot see, so the value is not given")
+            near = eq.a[np.argsort(np.abs(eq.a - a))[:4]]     # the spline's support
+            gap = self.unreached(gamma)
+            gap = gap[(gap > near.min()) & (gap < near.max())]
+            if len(gap):
+                a_pair, G = self.G_reached()
+                G_gap = G[np.isin(a_pair, gap)].max()
+                raise OutOfRange(
+                    f"gamma/(C10 R) = {gamma:g}: near the pull-off radius {name} = {a:.4g} R "
+                    f"the relaxation paths reached only G/(C10 R) = {G_gap:.4g} (at a = "
+                    f"{gap[0]:.4g} R), below gamma: the equilibrium curve is bridged there, "
+                    f"so the value is not given")
+        return eq, po
 
 
 def solve_loading(t: float, h: float, interface: str, mesh: str, delta_max: float,

@@ -136,12 +136,25 @@ def _interior_min(x, y):
 
 
 def pull_off(eq: Equilibrium) -> PullOff:
-    """Fixed-load (min P) and fixed-grips (min delta) pull-off, and a0 (P = 0)."""
+    """Fixed-load (min P) and fixed-grips (min delta) pull-off, and a0 (P = 0).
+
+    Each is the lowest interior minimum of the curve, and it must lie below both ends of
+    the curve: where an end is lower, the curve is still falling there, so the true
+    pull-off lies beyond the contact radii the paths reach (a local dip inside, e.g. from
+    noise, would otherwise be returned as the pull-off).
+    """
     star = _interior_min(eq.a, eq.P)
     dagger = _interior_min(eq.a, eq.delta)
     if star is None or dagger is None:
         raise OutOfRange(f"gamma/(C10 R) = {eq.gamma:g}: pull-off is not bracketed by the "
                          f"equilibrium curve (a from {eq.a[0]:.4g} to {eq.a[-1]:.4g} R)")
+    for name, y, (_, low) in (("P", eq.P, star), ("delta", eq.delta, dagger)):
+        if min(y[0], y[-1]) < low:
+            end = eq.a[0] if y[0] < y[-1] else eq.a[-1]
+            raise OutOfRange(f"gamma/(C10 R) = {eq.gamma:g}: the equilibrium curve's {name} "
+                             f"is still falling at its end a = {end:.4g} R, below its lowest "
+                             f"interior minimum: the pull-off lies beyond the contact radii "
+                             f"reached (raise delta_max)")
     sP, sd = CubicSpline(eq.a, eq.P), CubicSpline(eq.a, eq.delta)
     zeros = sP.roots(extrapolate=False)
     zeros = zeros[zeros > star[0]]

@@ -50,7 +50,12 @@ try:
 except InputError as e:
     out.update(status="refused (domain)", reason=str(e)[:200])
 except Exception as e:
-    out.update(status=f"refused ({type(e).__name__})", reason=str(e)[:200])
+    kind = type(e).__name__
+    if kind == "OutOfRange":     # which check refused the pull-off (solver.case.PathSet.pull_off)
+        text = str(e)
+        kind = ("graded zone" if "elements grow" in text else "G short" if "bridged" in text
+                else "not bracketed")
+    out.update(status=f"refused ({kind})", reason=str(e)[:200])
 out["wall_s"] = time.perf_counter() - t0
 print(json.dumps(out))
 """
@@ -70,7 +75,9 @@ def solve_cell(t, h, mesh, delta_max, gamma, timeout):
     return json.loads(run.stdout.strip().splitlines()[-1])
 
 
-_LABELS = {"refused (OutOfRange)": "no pull-off: paths do not\nbracket it (delta_max, G)"}
+_LABELS = {"refused (not bracketed)": "no pull-off: paths do not\nbracket it (delta_max)",
+           "refused (graded zone)": "refused: pull-off radius\nin the graded mesh zone",
+           "refused (G short)": "refused: G short of\ngamma near pull-off"}
 
 
 def draw(cells, path, title):

@@ -103,3 +103,17 @@ def test_base_shell_default_error_bar_holds_the_fine_value():
     err = float(error_bar(P["default"], P["coarse"]))
     assert abs(P["fine"] - P["default"]) <= 2 * err
     assert err < 0.02 * abs(P["default"])
+
+
+@pytest.mark.slow
+def test_thin_shell_default_error_bar_holds_the_fine_value():
+    """The same for a thin shell, t/R = 0.1 (the paper's thinnest) at gamma/(C10 R) =
+    0.003, whose pull-off radii (a* = 0.08 R, a_dagger = 0.055 R) lie in the evenly meshed
+    zone (paths to delta = 0.05 R)."""
+    from shell_adhesion.solver.case import solve_paths
+    gamma = 0.003
+    P = {m: solve_paths(0.1, 1.0, "no_slip", m, 0.05, 1.25 * gamma)[0].pull_off(gamma)[1].P_star
+         for m in ("coarse", "default", "fine")}
+    err = float(error_bar(P["default"], P["coarse"]))
+    assert abs(P["fine"] - P["default"]) <= 2 * err
+    assert err < 0.02 * abs(P["default"])

@@ -7,7 +7,8 @@ import pytest
 from conftest import GAMMA_HAT
 from shell_adhesion.solver.case import PathSet, solve_paths
 from shell_adhesion.solver.energy import Equilibrium, OutOfRange, pull_off
-from shell_adhesion.solver.mesh import mesh_spec, uniform_radius
+from shell_adhesion.solver.geometry import Cap
+from shell_adhesion.solver.mesh import mesh_spec, uniform_arc, uniform_radius
 
 
 def _curve(a, P, delta):
@@ -30,19 +31,32 @@ def test_a_dip_inside_a_curve_still_falling_at_its_end_is_not_the_pull_off():
 
 
 def test_pull_off_in_the_graded_zone_is_refused():
-    """t/R = 0.1 at gamma/(C10 R) = 0.005 pulls off at a* ~ 0.23 R, beyond the evenly meshed
-    0.15 R: the value is refused with the reason; its a_dagger (0.06 R) alone would pass."""
-    ps, _, _ = solve_paths(0.1, 1.0, "no_slip", "coarse", 0.12, 1.25 * GAMMA_HAT)
-    limit = 0.9 * uniform_radius(mesh_spec("coarse"))
+    """The base shell at gamma/(C10 R) = 0.015 (C10 = 0.1 MPa, 30 J/m^2, R = 20 mm) pulls
+    off at a* ~ 0.22 R, beyond the evenly meshed 0.134 R: refused with the reason."""
+    gamma = 0.015
+    ps, _, _ = solve_paths(0.15, 1.0, "no_slip", "coarse", 0.1, 1.25 * gamma)
     with pytest.raises(OutOfRange, match=r"pull-off radius a\* = 0\.2\d* R lies beyond 0\.134 R"):
-        ps.pull_off(GAMMA_HAT)
-    assert limit == pytest.approx(0.9 * np.sin(0.15))
+        ps.pull_off(gamma)
+    assert 0.9 * uniform_radius(Cap(0.15, 1.0), mesh_spec("coarse")) == pytest.approx(
+        0.9 * np.sin(0.15))
+
+
+def test_thin_shells_get_a_wider_even_zone():
+    """t/R = 0.1 at gamma/(C10 R) = 0.005 pulls off at a* ~ 0.23 R: its mesh is even out to
+    0.15 (0.15/0.1)^2 = 0.3375 R of arc, so the pull-off is given (and the base shell's
+    zone stays 0.15 R)."""
+    ps, _, _ = solve_paths(0.1, 1.0, "no_slip", "coarse", 0.12, 1.25 * GAMMA_HAT)
+    _, po = ps.pull_off(GAMMA_HAT)
+    assert 0.2 < po.a_star < 0.9 * np.sin(0.3375)
+    assert uniform_arc(Cap(0.1, 1.0), mesh_spec("coarse")) == pytest.approx(0.3375)
+    assert uniform_arc(Cap(0.02, 1.0), mesh_spec("default")) == pytest.approx(0.45)
+    assert uniform_arc(Cap(0.15, 1.0), mesh_spec("fine")) == uniform_arc(Cap(1.0, 1.0), mesh_spec("fine")) == 0.15
 
 
 def test_base_shell_pull_off_is_within_the_even_mesh(base_coarse):
     ps, _, _ = base_coarse
     _, po = ps.pull_off(GAMMA_HAT)
-    assert max(po.a_star, po.a_dagger) < 0.9 * uniform_radius(mesh_spec("coarse"))
+    assert max(po.a_star, po.a_dagger) < 0.9 * uniform_radius(Cap(0.15, 1.0), mesh_spec("coarse"))
 
 
 def test_a_curve_bridged_near_the_pull_off_is_refused(base_coarse, monkeypatch):

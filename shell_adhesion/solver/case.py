@@ -228,7 +228,7 @@ class PathSet:
         check_gamma(gamma, self.gamma_max)
         eq = equilibrium(surface or self.surface(), gamma)
         po = pull_off(eq)
-        limit = UNIFORM_SHARE * uniform_radius(mesh_spec(self.mesh))
+        limit = UNIFORM_SHARE * uniform_radius(Cap(self.t, self.h), mesh_spec(self.mesh))
         for name, a in (("a*", po.a_star), ("a_dagger", po.a_dagger)):
             if a > limit:
                 raise OutOfRange(

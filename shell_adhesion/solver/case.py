@@ -234,7 +234,7 @@ class PathSet:
                 raise OutOfRange(
                     f"gamma/(C10 R) = {gamma:g}: the pull-off radius {name} = {a:.4g} R lies "
                     f"beyond {limit:.3g} R, where the {self.mesh} mesh's elements grow; the "
-                    f"energy method is biased there by the grading (1.35 % on P* measured for "
+                    f"energy method is biased there by the grading (1.3 % on P* measured for "
                     f"t/R = 0.1), which the error bar cannot see, so the value is not given")
             near = eq.a[np.argsort(np.abs(eq.a - a))[:4]]     # the spline's support
             gap = self.unreached(gamma)

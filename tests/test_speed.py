@@ -1,5 +1,6 @@
-"""The speed-ups (solver.linear, Settings.fast_solver) change no result: with and without
-them, and with the fast solver unimportable, the numbers agree; the fallback is reported."""
+"""The speed-ups (solver.linear, Settings.fast_solver, Settings.hermite_predictor) change no
+result: with and without them, and with the fast solver unimportable, the numbers agree; the
+fallback is reported."""
 import subprocess
 import sys
 
@@ -43,6 +44,16 @@ def test_fast_solver_changes_no_result(t, h, delta_max, gamma_max):
     assert fast.stats["timing"]["linear_solver"] == linear.backend(True)
     assert slow.stats["timing"]["linear_solver"] == "superlu"
 
+
+@pytest.mark.parametrize("t, h, delta_max, gamma_max", [(0.15, 1.0, 0.02, 0.005),
+                                                         (0.02, 1.0, 0.03, 0.006)],
+                         ids=["base", "thin"])
+def test_hermite_predictor_changes_no_result(t, h, delta_max, gamma_max):
+    on, off = (solve_paths(t, h, "no_slip", "coarse", delta_max, gamma_max, s)[0]
+               for s in (Settings(), Settings(hermite_predictor=False)))
+    same_paths(on, off)
+    assert (on.stats["relaxation_newton_iterations"]
+            < off.stats["relaxation_newton_iterations"])
 
 def test_fast_solver_unimportable_falls_back_to_superlu():
     code = ("import sys; sys.modules['qdldl'] = None\n"

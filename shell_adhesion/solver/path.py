@@ -70,6 +70,8 @@ class Settings:
     max_points: int = 400     # states per relaxation path
     # speed-ups (solver.linear); each can be switched off, the results agree to round-off
     fast_solver: bool = True  # QDLDL LDL^T, symbolic analysis once per path; False: SuperLU
+    hermite_predictor: bool = True  # relaxation steps start from the cubic through the
+    #                                 last two states (x and dx/ddelta); False: the tangent
 
 
 @dataclass(frozen=True, eq=False)
@@ -238,9 +240,13 @@ class _Problem:
     def tangent_direction(self, K, c, lu=None):
         """dx/ddelta (full vector) and dP/ddelta at the state of K.
 
-        `lu` may be the factorisation of the last Newton iterate (same constraints).
+        `lu` may be the factorisation of the last Newton iterate (same constraints): one
+        step of iterative refinement with K then makes dx as accurate as K's own
+        factorisation would (the error of the stale one, of the size of the last Newton
+        correction, is squared).
         """
-        if lu is None:
+        fresh = lu is None
+        if fresh:
             lu, _ = self.factor(K, c)
         e = np.zeros(self.d.ndof)
         e[c.rimz] = 1.0
@@ -248,6 +254,8 @@ class _Problem:
         b_free = self.solve(lu, -dr_dd)
         dx = np.zeros(self.d.ndof)
         dx[c.free] = b_free
+        if not fresh:
+            dx[c.free] += self.solve(lu, -dr_dd - (K @ dx)[c.free])
         dx[c.rimz] = -1.0
         dP = -float(np.sum(K[c.rimz] @ dx))
         return dx, dP
@@ -460,15 +468,17 @@ def relax(d: Discretisation, interface: str, start: State, stop, step: float,
     penetration = centre_lifts = False
     inversion_delta = np.nan
     ended_by = f"point limit: {settings.max_points} states"
+    last = None               # the state before (delta, x, dx/ddelta), for the predictor
     while len(states) < settings.max_points:
         try:
-            xn, dn, Kn, rn, hist = pb.newton(c, x - dx * h, delta - h)
+            xn, dn, Kn, rn, hist = _relaxation_step(pb, c, last, (delta, x, dx), h)
         except ConvergenceError:
             h /= 2
             if h < step * 1e-3:
                 ended_by = f"no convergence below delta = {delta:.6g} R"
                 break
             continue
+        last = (delta, x, dx)
         x, delta, K, r = xn, dn, Kn, rn
         dx, dP = pb.tangent_direction(K, c, pb.last_lu)
         pulled = centre_pulled(d, r, held)
@@ -485,6 +495,30 @@ def relax(d: Discretisation, interface: str, start: State, stop, step: float,
         h = min(step, 2 * h)
     return RelaxationPath(interface, start, tuple(states), ended_by, penetration,
                           centre_lifts, timer, inversion_delta)
+
+
+def _relaxation_step(pb, c, last, now, h):
+    """Newton from `now` = (delta, x, dx/ddelta) to delta - h (pb.newton's result).
+
+    The start is the cubic (Hermite) extrapolation through `last` and `now` if
+    settings.hermite_predictor and there is a `last`, else the tangent; a failed cubic start
+    is retried from the tangent, so the predictor never makes a step fail."""
+    delta, x, dx = now
+    if pb.s.hermite_predictor and last is not None:
+        try:
+            return pb.newton(c, _hermite(last, now, delta - h), delta - h)
+        except ConvergenceError:
+            pass
+    return pb.newton(c, x - dx * h, delta - h)
+
+
+def _hermite(a, b, t):
+    """The cubic through the states a, b = (delta, x, dx/ddelta) at delta = t."""
+    (t0, x0, m0), (t1, x1, m1) = a, b
+    L = t1 - t0
+    s = (t - t0) / L
+    return ((2 * s**3 - 3 * s**2 + 1) * x0 + (s**3 - 2 * s**2 + s) * L * m0
+            + (-2 * s**3 + 3 * s**2) * x1 + (s**3 - s**2) * L * m1)
 
 
 def edge_forces(d: Discretisation, r_int, held):

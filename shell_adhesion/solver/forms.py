@@ -215,8 +215,31 @@ def tangent_pattern(d: Discretisation):
 
 def tangent(d: Discretisation, x):
     """Consistent tangent (CSR, symmetric indefinite) and residual at x."""
-    f, p = _fields(d, x)
-    dL, d2L, J, dJ, dLdp, d2Ldp2 = lagrangian_derivatives(_checked(d, f), p, d.material)
+    return Linearisation(d, x).tangent()
+
+
+class Linearisation:
+    """The residual at x (`r`, as `residual` gives it) and, on demand, the tangent
+    (`tangent()`, as the function gives it), from one evaluation of the material: a Newton
+    iteration that needs only the residual skips the assembly of the tangent."""
+
+    def __init__(self, d: Discretisation, x):
+        f, p = _fields(d, x)
+        self.d, self.x = d, x
+        self.derivatives = lagrangian_derivatives(_checked(d, f), p, d.material)
+        dL, _, _, _, dLdp, _ = self.derivatives
+        self._r = _residual(d, dL, dLdp)
+        self.r = self._r if d.cavity is None else d.cavity.add_residual(x, self._r)
+
+    def tangent(self):
+        """(K, r): the consistent tangent (CSR, symmetric indefinite) and residual."""
+        d, r = self.d, self._r
+        K = _stiffness(d, *self.derivatives)
+        return (K, r) if d.cavity is None else d.cavity.add_tangent(K, r, self.x)  # solver.cavity
+
+
+def _stiffness(d: Discretisation, dL, d2L, J, dJ, dLdp, d2Ldp2):
+    """The FE tangent (CSR) from the derivatives of the Lagrangian at the points."""
     E, Q = d.w.shape
     G, Np = d.G, d.Np
     # per point, the rows of [D B | dJ Np^T] that B's nonzero rows meet: those of f_rr,
@@ -247,6 +270,4 @@ def tangent(d: Discretisation, x):
     if d2Ldp2:
         data[pp] = d2Ldp2 * pp_values
     n = len(d.csr_indptr) - 1
-    K = sp.csr_matrix((data, d.csr_indices, d.csr_indptr), shape=(n, n))
-    r = _residual(d, dL, dLdp)
-    return (K, r) if d.cavity is None else d.cavity.add_tangent(K, r, x)   # solver.cavity
+    return sp.csr_matrix((data, d.csr_indices, d.csr_indptr), shape=(n, n))

@@ -43,6 +43,7 @@ class Timer:
     solve: float = 0.0          # triangular solves and their checks
     event: float = 0.0          # bordered Newton solves that locate contact events
     newton_iterations: int = 0
+    chord_iterations: int = 0   # Newton iterations with the previous factorisation
     factorisations: int = 0
     symbolic: int = 0           # orderings / symbolic analyses
     fallbacks: int = 0          # QDLDL factorisations redone by SuperLU
@@ -198,6 +199,38 @@ class LinearSolver:
             return xf
 
         return Factor(_checked(solve, lambda: self._fallback(K, c)), self.timer)
+
+
+class Bordered:
+    """Solves with the free block of constraints c from a factorisation `lu` of the free
+    block of c_before, whose free dofs include c's: the m dofs that c holds besides are held
+    by Lagrange multipliers, an m x m Schur complement (m solves once, then one per solve).
+    Raises ValueError if c frees a dof that c_before holds, SingularTangent if the Schur
+    complement is singular."""
+
+    BORDER_COND = 1e12   # largest condition number of the Schur complement
+
+    def __init__(self, lu, c_before, c):
+        self.lu = lu
+        self.keep = c_before.free_pos[c.free]             # c's free dofs among c_before's
+        if np.any(self.keep < 0):
+            raise ValueError("the constraints free a held dof")
+        extra = np.setdiff1d(np.arange(len(c_before.free)), self.keep)
+        E = np.zeros((len(c_before.free), len(extra)))
+        E[extra, np.arange(len(extra))] = 1.0
+        self.AE = np.column_stack([lu.solve(e) for e in E.T]) if len(extra) else E
+        self.S = self.AE[extra]
+        if len(extra) and not np.linalg.cond(self.S) < self.BORDER_COND:
+            raise SingularTangent("the bordered tangent is singular")
+        self.extra = extra
+
+    def solve(self, b):
+        z = np.zeros(len(self.AE))
+        z[self.keep] = b
+        z = self.lu.solve(z)
+        if len(self.extra):
+            z -= self.AE @ np.linalg.solve(self.S, z[self.extra])
+        return z[self.keep]
 
 
 class _Inaccurate(ArithmeticError):

@@ -16,9 +16,10 @@ import numpy as np
 
 from .contact import (Constraints, constraints, contact_reactions, deformed_radius, gaps,
                       rim_load)
-from .forms import Discretisation, deformation, potential_energy, tangent, tangent_pattern
+from .forms import (Discretisation, Linearisation, deformation, potential_energy, tangent,
+                    tangent_pattern)
 from .geometry import shown
-from .linear import LinearSolver, SingularTangent, Timer
+from .linear import Bordered, LinearSolver, SingularTangent, Timer
 from .material import limit_state
 from .quality import Quality, quality, worst
 
@@ -72,6 +73,17 @@ class Settings:
     fast_solver: bool = True  # QDLDL LDL^T, symbolic analysis once per path; False: SuperLU
     hermite_predictor: bool = True  # relaxation steps start from the cubic through the
     #                                 last two states (x and dx/ddelta); False: the tangent
+    bordered_event_tangent: bool = True  # after a contact event, the tangent from the event
+    #                                 solve's factorisation bordered by the newly held dofs;
+    #                                 False: a new factorisation
+    modified_newton: bool = True  # a Newton iteration after one that cut the residual by
+    #                               CHORD_GAIN keeps its factorisation (a chord step, no
+    #                               tangent assembled); False: every iteration factorises
+
+
+CHORD_GAIN = 1e-2
+REFINE_MAX = 6        # iterative refinement of the tangent direction from a stale factorisation
+REFINE_TOL = 1e-10    # its last correction relative to the direction
 
 
 @dataclass(frozen=True, eq=False)
@@ -163,6 +175,18 @@ class _Problem:
         self.timer.assembly += time.perf_counter() - t0
         return K, r
 
+    def linearise(self, x) -> Linearisation:
+        t0 = time.perf_counter()
+        lin = Linearisation(self.d, x)
+        self.timer.assembly += time.perf_counter() - t0
+        return lin
+
+    def tangent(self, lin: Linearisation):
+        t0 = time.perf_counter()
+        K, r = lin.tangent()
+        self.timer.assembly += time.perf_counter() - t0
+        return K, r
+
     def factor(self, K, c: Constraints):
         """Factorisation of the free block of K, and d(residual of the free dofs)/d(delta)."""
         try:
@@ -173,6 +197,17 @@ class _Problem:
         e[c.rimz] = 1.0
         dr_ddelta = -(K @ e)[c.free]
         return lu, dr_ddelta
+
+    def bordered(self, lu, c_before, c):
+        """Solves with the free block of c from `lu` of c_before's (solver.linear.Bordered),
+        or None (then the caller factorises)."""
+        t0 = time.perf_counter()
+        try:
+            return Bordered(lu, c_before, c)
+        except (SingularTangent, ValueError, np.linalg.LinAlgError):
+            return None
+        finally:
+            self.timer.factor += time.perf_counter() - t0
 
     def solve(self, lu, rhs):
         try:
@@ -212,18 +247,24 @@ class _Problem:
         lu = None
         for _ in range(self.s.max_iter):
             with np.errstate(invalid="ignore", divide="ignore"):  # an inverted trial iterate
-                K, r = self.assemble(x)
+                lin = self.linearise(x)
+            r = lin.r
             if not np.all(np.isfinite(r)):
                 raise ConvergenceError("non-finite residual (element inverted)")
             res, ok = self.converged(r, c)
             history.append(res)
             if ok and (target is None or abs(x[kdof] + self.Z[target]) <= 1e-3 * self.s.gap_tol):
                 self.last_lu = lu if history[1:] else None
+                K, r = self.tangent(lin)
                 return x, delta, K, r, tuple(history)
             if len(history) > 3 and res > 1e3 * history[1]:
                 break
-            lu, dr_dd = self.factor(K, c)
-            self.timer.newton_iterations += 1
+            if (self.s.modified_newton and lu is not None
+                    and res <= CHORD_GAIN * history[-2]):
+                self.timer.chord_iterations += 1    # the last Jacobian is good enough
+            else:
+                lu, dr_dd = self.factor(self.tangent(lin)[0], c)
+                self.timer.newton_iterations += 1
             a = self.solve(lu, -r[c.free])
             if target is None:
                 dx = a
@@ -240,10 +281,10 @@ class _Problem:
     def tangent_direction(self, K, c, lu=None):
         """dx/ddelta (full vector) and dP/ddelta at the state of K.
 
-        `lu` may be the factorisation of the last Newton iterate (same constraints): one
-        step of iterative refinement with K then makes dx as accurate as K's own
-        factorisation would (the error of the stale one, of the size of the last Newton
-        correction, is squared).
+        `lu` may be the factorisation of an earlier Newton iterate (same constraints, or
+        bordered to them): iterative refinement with K then makes dx as accurate as K's own
+        factorisation would (each step multiplies the error by about the relative change of
+        the tangent since); if REFINE_MAX steps do not, K is factorised.
         """
         fresh = lu is None
         if fresh:
@@ -251,11 +292,16 @@ class _Problem:
         e = np.zeros(self.d.ndof)
         e[c.rimz] = 1.0
         dr_dd = -(K @ e)[c.free]
-        b_free = self.solve(lu, -dr_dd)
         dx = np.zeros(self.d.ndof)
-        dx[c.free] = b_free
-        if not fresh:
-            dx[c.free] += self.solve(lu, -dr_dd - (K @ dx)[c.free])
+        dx[c.free] = self.solve(lu, -dr_dd)
+        for _ in range(0 if fresh else REFINE_MAX):
+            step = self.solve(lu, -dr_dd - (K @ dx)[c.free])
+            dx[c.free] += step
+            if np.abs(step).max() <= REFINE_TOL * np.abs(dx).max():
+                break
+        else:
+            if not fresh:
+                return self.tangent_direction(K, c)
         dx[c.rimz] = -1.0
         dP = -float(np.sum(K[c.rimz] @ dx))
         return dx, dP
@@ -350,7 +396,9 @@ def load(d: Discretisation, interface: str, delta_max: float,
             held = held + [target]
             x[d.uz(d.capmesh.outer[target])] = -pb.Z[target]
             joined = target
-            c = constraints(d, interface, held)
+            c_event, c = c, constraints(d, interface, held)
+            if settings.bordered_event_tangent and pb.last_lu is not None:
+                reuse = pb.bordered(pb.last_lu, c_event, c)
         released = []
         if interface == "frictionless":
             before = held

@@ -76,9 +76,10 @@ class Settings:
     bordered_event_tangent: bool = True  # after a contact event, the tangent from the event
     #                                 solve's factorisation bordered by the newly held dofs;
     #                                 False: a new factorisation
-    modified_newton: bool = True  # a Newton iteration after one that cut the residual by
-    #                               CHORD_GAIN keeps its factorisation (a chord step, no
-    #                               tangent assembled); False: every iteration factorises
+    modified_newton: bool = True  # in loading and relaxation, a Newton iteration after one
+    #                               that cut the residual by CHORD_GAIN keeps its
+    #                               factorisation (a chord step, no tangent assembled);
+    #                               False: every iteration factorises
 
 
 CHORD_GAIN = 1e-2
@@ -220,21 +221,23 @@ class _Problem:
         scale = np.abs(r[c.fixed]).max()
         return res, res <= self.s.tol * scale + self.s.atol * self.d.force_scale
 
-    def newton(self, c: Constraints, x, delta, target=None):
+    def newton(self, c: Constraints, x, delta, target=None, modified=False):
         """Equilibrium at fixed delta, or (target = outer node) where its gap is zero.
 
         Returns (x, delta, K, r, history).  Raises ConvergenceError.  The time of the
-        bordered solves (target given) is counted as event location.
+        bordered solves (target given) is counted as event location.  `modified`: an
+        iteration after one that cut the residual by CHORD_GAIN keeps that iteration's
+        factorisation (a chord step: no tangent assembled); else full Newton.
         """
         if target is None:
-            return self._newton(c, x, delta)
+            return self._newton(c, x, delta, None, modified)
         t0 = time.perf_counter()
         try:
-            return self._newton(c, x, delta, target)
+            return self._newton(c, x, delta, target, modified)
         finally:
             self.timer.event += time.perf_counter() - t0
 
-    def _newton(self, c: Constraints, x, delta, target=None):
+    def _newton(self, c: Constraints, x, delta, target, modified):
         d = self.d
         if not (math.isfinite(delta) and np.all(np.isfinite(x))):
             raise ConvergenceError(f"non-finite start of Newton (delta = {shown(delta)})")
@@ -259,8 +262,7 @@ class _Problem:
                 return x, delta, K, r, tuple(history)
             if len(history) > 3 and res > 1e3 * history[1]:
                 break
-            if (self.s.modified_newton and lu is not None
-                    and res <= CHORD_GAIN * history[-2]):
+            if modified and lu is not None and res <= CHORD_GAIN * history[-2]:
                 self.timer.chord_iterations += 1    # the last Jacobian is good enough
             else:
                 lu, dr_dd = self.factor(self.tangent(lin)[0], c)
@@ -448,11 +450,12 @@ def _advance(pb, c, x, delta, dx, free_nodes, target, step, delta_max):
     g0 = gaps(d, x, free_nodes)
     guess = x + dx * step
     for _ in range(s.max_relocations):
-        xn, dn, Kn, rn, hist = pb.newton(c, guess, delta + step, target)
+        xn, dn, Kn, rn, hist = pb.newton(c, guess, delta + step, target, s.modified_newton)
         if target is not None and dn > delta_max:
             # the event lies beyond the end of the path: stop at delta_max instead
             target, step = None, delta_max - delta
-            xn, dn, Kn, rn, hist = pb.newton(c, x + dx * step, delta_max)
+            xn, dn, Kn, rn, hist = pb.newton(c, x + dx * step, delta_max, None,
+                                             s.modified_newton)
         if dn < delta * (1 - 1e-12):
             raise ConvergenceError(f"the event of outer node {target} was located behind the "
                                    f"last state (delta = {dn:.6g} < {delta:.6g} R)")
@@ -489,7 +492,7 @@ def _release_tensile(pb, x, delta, K, r, held, c, hist):
             break
         held = [h for i, h in enumerate(held) if i != worst]
         c = constraints(d, pb.interface, held)
-        x, delta, K, r, hist = pb.newton(c, x, delta)
+        x, delta, K, r, hist = pb.newton(c, x, delta, None, pb.s.modified_newton)
     return x, K, r, held, c, hist
 
 
@@ -554,10 +557,11 @@ def _relaxation_step(pb, c, last, now, h):
     delta, x, dx = now
     if pb.s.hermite_predictor and last is not None:
         try:
-            return pb.newton(c, _hermite(last, now, delta - h), delta - h)
+            return pb.newton(c, _hermite(last, now, delta - h), delta - h, None,
+                             pb.s.modified_newton)
         except ConvergenceError:
             pass
-    return pb.newton(c, x - dx * h, delta - h)
+    return pb.newton(c, x - dx * h, delta - h, None, pb.s.modified_newton)
 
 
 def _hermite(a, b, t):

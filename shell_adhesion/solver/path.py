@@ -82,7 +82,7 @@ class Settings:
     #                               False: every iteration factorises
 
 
-CHORD_GAIN = 1e-2
+CHORD_GAIN = 1e-2    # the residual cut of an iteration after which the next is a chord step
 REFINE_MAX = 6        # iterative refinement of the tangent direction from a stale factorisation
 REFINE_TOL = 1e-10    # its last correction relative to the direction
 
@@ -296,17 +296,21 @@ class _Problem:
         dr_dd = -(K @ e)[c.free]
         dx = np.zeros(self.d.ndof)
         dx[c.free] = self.solve(lu, -dr_dd)
-        for _ in range(0 if fresh else REFINE_MAX):
-            step = self.solve(lu, -dr_dd - (K @ dx)[c.free])
-            dx[c.free] += step
-            if np.abs(step).max() <= REFINE_TOL * np.abs(dx).max():
-                break
-        else:
-            if not fresh:
-                return self.tangent_direction(K, c)
+        if not (fresh or self._refined(K, c, lu, dr_dd, dx)):
+            return self.tangent_direction(K, c)
         dx[c.rimz] = -1.0
         dP = -float(np.sum(K[c.rimz] @ dx))
         return dx, dP
+
+    def _refined(self, K, c, lu, dr_dd, dx) -> bool:
+        """Iterative refinement of dx[c.free] (K_ff dx = -dr_dd) in place; False if
+        REFINE_MAX steps do not bring the last correction below REFINE_TOL."""
+        for _ in range(REFINE_MAX):
+            step = self.solve(lu, -dr_dd - (K @ dx)[c.free])
+            dx[c.free] += step
+            if np.abs(step).max() <= REFINE_TOL * np.abs(dx).max():
+                return True
+        return False
 
     def state(self, x, delta, r, held, joined, history, dP=np.nan, centre_off=False,
               check_J=True):

@@ -225,7 +225,7 @@ class Linearisation:
 
     def __init__(self, d: Discretisation, x):
         f, p = _fields(d, x)
-        self.d, self.x = d, x
+        self.d, self.x = d, np.array(x)      # the caller may move on from x
         self.derivatives = lagrangian_derivatives(_checked(d, f), p, d.material)
         dL, _, _, _, dLdp, _ = self.derivatives
         self._r = _residual(d, dL, dLdp)

@@ -1,13 +1,17 @@
 """Benchmark table: the base shell (t/R = 0.15, h = R, R = 20 mm, C10 = 0.3 MPa) on one
-process, with and without the fast linear solver (Settings.fast_solver), back to back.
+process, with and without the speed-ups, back to back: "all" (the defaults), "no newton"
+(Settings.hermite_predictor, modified_newton and bordered_event_tangent off: one
+factorisation per Newton iteration and per tangent, from the tangent predictor), "superlu"
+(those off and Settings.fast_solver off too).  The assembly is the same in all three.
 
 Rows: the no_slip and frictionless loading curves to delta = R/4 (5 mm), and the whole
 pull-off (loading, every relaxation path, energy method for gamma = 10..50 J/m^2).
-Columns: DOFs, Newton iterations, factorisations, wall time and its split (assembly,
+Columns: DOFs, Newton iterations (with a new factorisation; chord: with the previous one),
+factorisations, wall time and its split (assembly,
 factorisation, triangular solves, bordered event solves (part of the others), energy
 method), the headline number (P at 5 mm, or P* at gamma = 30 J/m^2, in N).
 
-Run: python benchmarks/run_all.py [--mesh default] [--solver both|fast|superlu]
+Run: python benchmarks/run_all.py [--mesh default] [--settings all [no-newton [superlu]]]
 """
 import argparse
 import time
@@ -42,8 +46,14 @@ def pull_off_row(mesh, settings):
                 force_N(P_star[GAMMAS_J_M2.index(30.0)], C10_MPA, R_MM))
 
 
+NEWTON_OFF = dict(hermite_predictor=False, modified_newton=False, bordered_event_tangent=False)
+SETTINGS = {"all": Settings(), "no-newton": Settings(**NEWTON_OFF),
+            "superlu": Settings(fast_solver=False, **NEWTON_OFF)}
+
+
 def row_of(dofs, timing, wall, energy_s, headline_N):
     return {"dofs": dofs, "Newton": timing["newton_iterations"],
+            "chord": timing["chord_iterations"],
             "factorisations": timing["factorisations"], "solver": timing["linear_solver"],
             "wall s": wall, "assembly s": timing["assembly_s"],
             "factor s": timing["factorisation_s"], "solve s": timing["solve_s"],
@@ -54,19 +64,18 @@ def row_of(dofs, timing, wall, energy_s, headline_N):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--mesh", default="default", choices=("coarse", "default", "fine"))
-    ap.add_argument("--solver", default="both", choices=("both", "fast", "superlu"))
+    ap.add_argument("--settings", nargs="+", default=list(SETTINGS), choices=list(SETTINGS))
     args = ap.parse_args()
-    solvers = {"both": (True, False), "fast": (True,), "superlu": (False,)}[args.solver]
     rows = []
     benches = [("loading no_slip, P(5 mm)", lambda s: loading_row("no_slip", args.mesh, s)),
                ("loading frictionless, P(5 mm)",
                 lambda s: loading_row("frictionless", args.mesh, s)),
                ("pull-off, P*(30 J/m^2)", lambda s: pull_off_row(args.mesh, s))]
     for name, bench in benches:
-        for fast in solvers:
-            row = bench(Settings(fast_solver=fast))
-            rows.append({"benchmark": name, **row})
-            print(f"done: {name}, {row['solver']}: {row['wall s']:.1f} s", flush=True)
+        for key in args.settings:
+            row = bench(SETTINGS[key])
+            rows.append({"benchmark": name, "speed-ups": key, **row})
+            print(f"done: {name}, {key}: {row['wall s']:.1f} s", flush=True)
     print(f"\nmesh {args.mesh}, one process; seconds of wall time; the split (assembly, "
           f"factorisation, solves, energy method) is inside the wall time, event solves "
           f"overlap the first three")

@@ -1,5 +1,7 @@
-"""The speed-ups (solver.linear, Settings.fast_solver) change no result: with and without
-them, and with the fast solver unimportable, the numbers agree; the fallback is reported."""
+"""The speed-ups (solver.linear, Settings.fast_solver, and the Newton ones: hermite_predictor,
+modified_newton, bordered_event_tangent) change no result: with and without each, and with the
+fast solver unimportable, the numbers agree; the fallback is reported."""
+import functools
 import subprocess
 import sys
 
@@ -42,6 +44,29 @@ def test_fast_solver_changes_no_result(t, h, delta_max, gamma_max):
     same_paths(fast, slow)
     assert fast.stats["timing"]["linear_solver"] == linear.backend(True)
     assert slow.stats["timing"]["linear_solver"] == "superlu"
+
+
+# each Newton speed-up and the work it saves (counts of the timing block)
+SWITCHES = {"hermite_predictor": ("newton_iterations", "chord_iterations"),
+            "modified_newton": ("factorisations",),
+            "bordered_event_tangent": ("factorisations",)}
+
+
+@functools.lru_cache(maxsize=None)
+def paths(t, h, delta_max, gamma_max, switch_off=None):
+    settings = Settings() if switch_off is None else Settings(**{switch_off: False})
+    return solve_paths(t, h, "no_slip", "coarse", delta_max, gamma_max, settings)[0]
+
+
+@pytest.mark.parametrize("switch", SWITCHES)
+@pytest.mark.parametrize("t, h, delta_max, gamma_max", [(0.15, 1.0, 0.02, 0.005),
+                                                         (0.02, 1.0, 0.03, 0.006)],
+                         ids=["base", "thin"])
+def test_newton_speed_ups_change_no_result(switch, t, h, delta_max, gamma_max):
+    on, off = paths(t, h, delta_max, gamma_max), paths(t, h, delta_max, gamma_max, switch)
+    same_paths(on, off)
+    work = lambda ps: sum(ps.stats["timing"][k] for k in SWITCHES[switch])
+    assert work(on) < work(off)
 
 
 def test_fast_solver_unimportable_falls_back_to_superlu():

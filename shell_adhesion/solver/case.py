@@ -347,6 +347,7 @@ def timing_stats(loading_timer, relaxations) -> dict:
             "solve_s": round(total("solve"), 4),
             "event_location_s": round(total("event"), 4),
             "newton_iterations": int(total("newton_iterations")),
+            "chord_iterations": int(total("chord_iterations")),
             "factorisations": int(total("factorisations")),
             "symbolic_analyses": int(total("symbolic")),
             "linear_solver": "+".join(backends),

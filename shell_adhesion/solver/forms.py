@@ -48,20 +48,54 @@ class Discretisation:
         return 2 * self.n2 + self.n1 + (self.cavity.extra_dofs if self.cavity else 0)
 
     @cached_property
-    def B_eq(self) -> np.ndarray:
-        """B as contiguous (E, Q, 5, 18) blocks, one per quadrature point (assembly)."""
-        return np.ascontiguousarray(self.B.transpose(2, 3, 0, 1))
+    def G(self) -> np.ndarray:
+        """The nonzero rows of B, (3, 9, E, Q): dN/dr, dN/dz and N / r.  f_rr, f_rz, f_tt
+        take them from u_r, f_zr, f_zz the first two from u_z."""
+        return np.ascontiguousarray(self.B[[0, 1, 4], :9])
 
     @cached_property
-    def B_eT(self) -> np.ndarray:
-        """B as contiguous (E, 18, Q * 5) blocks, one per element (assembly)."""
+    def G_e(self) -> np.ndarray:
+        """G per element, (E, 3 * Q, 9), rows (row of G, point) (assembly of f)."""
         E, Q = self.w.shape
-        return np.ascontiguousarray(self.B_eq.reshape(E, Q * 5, 18).transpose(0, 2, 1))
+        return np.ascontiguousarray(self.G.transpose(2, 0, 3, 1)).reshape(E, 3 * Q, 9)
 
     @cached_property
-    def Np_eq(self) -> np.ndarray:
-        """Pressure shape functions as contiguous (E, Q, 4) blocks (assembly)."""
-        return np.ascontiguousarray(self.Np.transpose(1, 2, 0))
+    def Gw_e(self) -> np.ndarray:
+        """(G w)^T per element, (E, 9, Q * 3), columns (point, row of G): sum_q G^T w X is
+        then one matmul with X (E, Q * 3, k) (assembly of Ke and the residual)."""
+        Gw = self.G * self.w                                   # (3, 9, E, Q)
+        return np.ascontiguousarray(Gw.transpose(2, 1, 3, 0)).reshape(self.w.shape[0], 9, -1)
+
+    @cached_property
+    def Gw_z(self) -> np.ndarray:
+        """As `Gw_e`, for the two rows of G that u_z enters: (E, 9, Q * 2)."""
+        Gw = self.G[:2] * self.w
+        return np.ascontiguousarray(Gw.transpose(2, 1, 3, 0)).reshape(self.w.shape[0], 9, -1)
+
+    @cached_property
+    def slots(self):
+        """Where `tangent`'s element products go: (slot, mirror, mirror_source, pp).
+
+        slot: for the u_r rows of each element (9 x 22: 9 u_r, 9 u_z, 4 p columns) then
+        its u_z rows (9 x 13: 9 u_z, 4 p), the CSR data position of each entry.  The blocks
+        below (u_z, u_r), (p, u_r), (p, u_z) are the transposes of those above, copied from
+        positions mirror_source to mirror; pp (positions, values): the assembled
+        sum_q Np Np^T w of the (p, p) block.
+        """
+        E, Q = self.w.shape
+        nnz, n = len(self.csr_indices), len(self.csr_indptr) - 1
+        slot = self.csr_slot.reshape(E, 22, 22)
+        rows = np.repeat(np.arange(n, dtype=np.int64), np.diff(self.csr_indptr))
+        cols = self.csr_indices.astype(np.int64)
+        kind = np.minimum(np.arange(n) // self.n2, 2)           # 0 u_r, 1 u_z, 2 p
+        mirror = np.flatnonzero(kind[rows] > kind[cols])
+        source = np.searchsorted(rows * n + cols, cols[mirror] * n + rows[mirror])
+        NpNp = np.einsum("beq,ceq,eq->ebc", self.Np, self.Np, self.w)
+        slot_pp = slot[:, 18:, 18:].ravel()
+        pp = np.unique(slot_pp)
+        pp_values = np.bincount(slot_pp, weights=NpNp.ravel(), minlength=nnz)[pp]
+        slot = np.concatenate([slot[:, :9, :].ravel(), slot[:, 9:18, 9:].ravel()])
+        return slot, mirror, source, (pp, pp_values)
 
     def ur(self, nodes):
         return np.asarray(nodes)
@@ -101,7 +135,13 @@ def discretise(capmesh: CapMesh, C10: float = 1.0,
 
 def _fields(d: Discretisation, x):
     xe = x[d.edofs]                                   # (22, E)
-    f = np.einsum("iaeq,ae->ieq", d.B, xe[:18])
+    E, Q = d.w.shape
+    G = d.G_e
+    fr = np.matmul(G, xe[:9].T[:, :, None]).reshape(E, 3, Q)       # f_rr, f_rz, f_tt
+    fz = np.matmul(G[:, :2 * Q], xe[9:18].T[:, :, None]).reshape(E, 2, Q)   # f_zr, f_zz
+    f = np.empty((5, E, Q))
+    f[[0, 1, 4]] = fr.transpose(1, 0, 2)
+    f[[2, 3]] = fz.transpose(1, 0, 2)
     f[[0, 3, 4]] += 1.0
     p = np.einsum("beq,be->eq", d.Np, xe[18:])
     return f, p
@@ -141,8 +181,16 @@ def residual(d: Discretisation, x):
     """Internal force vector dL/dx (units of C10 R^2; pressure rows: volume / R^3)."""
     f, p = _fields(d, x)
     dL, _, _, _, dLdp, _ = lagrangian_derivatives(_checked(d, f), p, d.material)
-    r = _scatter_vector(d, np.einsum("iaeq,ieq->ae", d.B, dL * d.w), dLdp * d.w)
+    r = _residual(d, dL, dLdp)
     return r if d.cavity is None else d.cavity.add_residual(x, r)   # solver.cavity
+
+
+def _residual(d, dL, dLdp):
+    """sum_q B^T w dL/df and sum_q Np w dL/dp, scattered to the dofs (without a cavity)."""
+    E, Q = d.w.shape
+    ur = np.matmul(d.Gw_e, dL[[0, 1, 4]].transpose(1, 2, 0).reshape(E, Q * 3, 1))
+    uz = np.matmul(d.Gw_z, dL[[2, 3]].transpose(1, 2, 0).reshape(E, Q * 2, 1))
+    return _scatter_vector(d, np.vstack([ur[:, :, 0].T, uz[:, :, 0].T]), dLdp * d.w)
 
 
 def potential_energy(d: Discretisation, x) -> float:
@@ -167,24 +215,59 @@ def tangent_pattern(d: Discretisation):
 
 def tangent(d: Discretisation, x):
     """Consistent tangent (CSR, symmetric indefinite) and residual at x."""
-    f, p = _fields(d, x)
-    dL, d2L, J, dJ, dLdp, d2Ldp2 = lagrangian_derivatives(_checked(d, f), p, d.material)
-    w = d.w
-    r = _scatter_vector(d, np.einsum("iaeq,ieq->ae", d.B, dL * w), dLdp * w)
-    E, Q = w.shape
-    # stacked products of contiguous blocks: Kuu = sum_q B^T D B, Kup = sum_q B^T dJ Np^T
-    D = np.ascontiguousarray(np.moveaxis(d2L * w, (0, 1), (2, 3)))   # (E, Q, 5, 5)
-    DB = np.matmul(D, d.B_eq)                                        # (E, Q, 5, 18)
-    Kuu = np.matmul(d.B_eT, DB.reshape(E, Q * 5, 18))
-    dJB = np.matmul(np.ascontiguousarray(np.moveaxis(dJ * w, 0, 2))[:, :, None, :], d.B_eq)
-    Kup = np.matmul(dJB[:, :, 0, :].transpose(0, 2, 1), d.Np_eq)      # (E, 18, 4)
-    Ke = np.zeros((E, 22, 22))
-    Ke[:, :18, :18] = Kuu
-    Ke[:, :18, 18:] = Kup
-    Ke[:, 18:, :18] = Kup.transpose(0, 2, 1)
+    return Linearisation(d, x).tangent()
+
+
+class Linearisation:
+    """The residual at x (`r`, as `residual` gives it) and, on demand, the tangent
+    (`tangent()`, as the function gives it), from one evaluation of the material: a Newton
+    iteration that needs only the residual skips the assembly of the tangent."""
+
+    def __init__(self, d: Discretisation, x):
+        f, p = _fields(d, x)
+        self.d, self.x = d, np.array(x)      # the caller may move on from x
+        self.derivatives = lagrangian_derivatives(_checked(d, f), p, d.material)
+        dL, _, _, _, dLdp, _ = self.derivatives
+        self._r = _residual(d, dL, dLdp)
+        self.r = self._r if d.cavity is None else d.cavity.add_residual(x, self._r)
+
+    def tangent(self):
+        """(K, r): the consistent tangent (CSR, symmetric indefinite) and residual."""
+        d, r = self.d, self._r
+        K = _stiffness(d, *self.derivatives)
+        return (K, r) if d.cavity is None else d.cavity.add_tangent(K, r, self.x)  # solver.cavity
+
+
+def _stiffness(d: Discretisation, dL, d2L, J, dJ, dLdp, d2Ldp2):
+    """The FE tangent (CSR) from the derivatives of the Lagrangian at the points."""
+    E, Q = d.w.shape
+    G, Np = d.G, d.Np
+    # per point, the rows of [D B | dJ Np^T] that B's nonzero rows meet: those of f_rr,
+    # f_rz, f_tt against every column, those of f_zr, f_zz against the u_z and p columns
+    Xr = np.empty((3, 22, E, Q))
+    Xz = np.empty((2, 13, E, Q))
+    for X, rows in ((Xr, (0, 1, 4)), (Xz, (2, 3))):
+        z = X.shape[1] - 13                            # first u_z column
+        for k, i in enumerate(rows):
+            Y = X[k]
+            if z:
+                np.multiply(d2L[i, 0], G[0], out=Y[:9])
+                Y[:9] += d2L[i, 1] * G[1]
+                Y[:9] += d2L[i, 4] * G[2]
+            np.multiply(d2L[i, 2], G[0], out=Y[z:z + 9])
+            Y[z:z + 9] += d2L[i, 3] * G[1]
+            np.multiply(dJ[i], Np, out=Y[z + 9:])
+    # per element, sum_q (G w)^T X: the u_r rows (E, 9, 22) and u_z rows (E, 9, 13) of Ke,
+    # in the order of `d.slots`
+    W = np.empty(E * 9 * 35)
+    np.matmul(d.Gw_e, np.ascontiguousarray(Xr.transpose(2, 3, 0, 1)).reshape(E, Q * 3, 22),
+              out=W[:E * 9 * 22].reshape(E, 9, 22))
+    np.matmul(d.Gw_z, np.ascontiguousarray(Xz.transpose(2, 3, 0, 1)).reshape(E, Q * 2, 13),
+              out=W[E * 9 * 22:].reshape(E, 9, 13))
+    slot, mirror, source, (pp, pp_values) = d.slots
+    data = np.bincount(slot, weights=W, minlength=len(d.csr_indices))
+    data[mirror] = data[source]                        # the blocks below: symmetry
     if d2Ldp2:
-        Ke[:, 18:, 18:] = d2Ldp2 * np.einsum("beq,ceq,eq->ebc", d.Np, d.Np, w)
-    data = np.bincount(d.csr_slot, weights=Ke.ravel(), minlength=len(d.csr_indices))
+        data[pp] = d2Ldp2 * pp_values
     n = len(d.csr_indptr) - 1
-    K = sp.csr_matrix((data, d.csr_indices, d.csr_indptr), shape=(n, n))
-    return (K, r) if d.cavity is None else d.cavity.add_tangent(K, r, x)   # solver.cavity
+    return sp.csr_matrix((data, d.csr_indices, d.csr_indptr), shape=(n, n))

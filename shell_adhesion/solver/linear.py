@@ -5,7 +5,8 @@ Two factorisations of the same matrix:
 - "qdldl": a sparse LDL^T (QDLDL, with an AMD ordering) of the whole tangent with the
   prescribed dofs' rows and columns replaced by the identity.  The sparsity pattern is then
   the discretisation's, whatever the constraints, so the ordering and the symbolic analysis
-  are done once per path and every later factorisation is numeric only.  QDLDL does not
+  are done once per pattern and thread (shared by the loading and relaxation paths that
+  follow each other there) and every later factorisation is numeric only.  QDLDL does not
   pivot: every solve is checked for finite values and the first solve of each
   factorisation for its backward error (below `BACKWARD_ERROR`); a factorisation that
   fails is redone by SuperLU, and after MAX_FAILURES in a row the path keeps to SuperLU.
@@ -15,7 +16,9 @@ Two factorisations of the same matrix:
 The chosen solver and the number of fallbacks are counted in the path's Timer.
 """
 from dataclasses import dataclass, fields
+import threading
 import time
+import weakref
 
 import numpy as np
 import scipy.sparse as sp
@@ -43,6 +46,7 @@ class Timer:
     solve: float = 0.0          # triangular solves and their checks
     event: float = 0.0          # bordered Newton solves that locate contact events
     newton_iterations: int = 0
+    chord_iterations: int = 0   # Newton iterations with the previous factorisation
     factorisations: int = 0
     symbolic: int = 0           # orderings / symbolic analyses
     fallbacks: int = 0          # QDLDL factorisations redone by SuperLU
@@ -85,8 +89,8 @@ class LinearSolver:
         n = len(indptr) - 1
         self.rows = np.repeat(np.arange(n), np.diff(indptr))
         self.cols = np.asarray(indices)
-        self._qdldl = None
-        self._generation = self._failures = 0
+        self._shared = _shared(indptr)
+        self._failures = 0
         self._plan_key = self._rows_key = None
         if self.backend == "qdldl":
             # the upper triangle in CSC is the lower triangle of the symmetric CSR
@@ -164,22 +168,23 @@ class LinearSolver:
         data[zero] = 0.0
         data[one] = 1.0
         A = sp.csc_matrix((data, self._low_indices, self._low_indptr), shape=(self._n,) * 2)
+        shared = self._shared
         try:
-            if self._qdldl is None:
-                self._qdldl = qdldl.Solver(A, upper=True)
+            if shared.solver is None:
+                shared.solver = qdldl.Solver(A, upper=True)
                 self.timer.symbolic += 1
             else:
-                self._qdldl.update(A, upper=True)
+                shared.solver.update(A, upper=True)
         except (RuntimeError, ValueError):   # a zero pivot: QDLDL does not pivot
-            self._qdldl = None
+            shared.solver = None
             return None
-        self._generation += 1
-        solver, free, n, generation = self._qdldl, c.free, self._n, self._generation
+        shared.generation += 1
+        solver, free, n, generation = shared.solver, c.free, self._n, shared.generation
         K_max = float(np.abs(K.data).max())
         checked = []
 
         def solve(b):
-            if self._generation != generation or solver is not self._qdldl:
+            if shared.generation != generation or solver is not shared.solver:
                 raise _Inaccurate   # QDLDL has refactorised since: this factor is gone
             x = np.zeros(n)
             x[free] = b
@@ -198,6 +203,61 @@ class LinearSolver:
             return xf
 
         return Factor(_checked(solve, lambda: self._fallback(K, c)), self.timer)
+
+
+class Bordered:
+    """Solves with the free block of constraints c from a factorisation `lu` of the free
+    block of c_before, whose free dofs include c's: the m dofs that c holds besides are held
+    by Lagrange multipliers, an m x m Schur complement (m solves once, then one per solve).
+    Raises ValueError if c frees a dof that c_before holds, SingularTangent if the Schur
+    complement is singular."""
+
+    BORDER_COND = 1e12   # largest condition number of the Schur complement
+
+    def __init__(self, lu, c_before, c):
+        self.lu = lu
+        self.keep = c_before.free_pos[c.free]             # c's free dofs among c_before's
+        if np.any(self.keep < 0):
+            raise ValueError("the constraints free a held dof")
+        extra = np.setdiff1d(np.arange(len(c_before.free)), self.keep)
+        E = np.zeros((len(c_before.free), len(extra)))
+        E[extra, np.arange(len(extra))] = 1.0
+        self.AE = np.column_stack([lu.solve(e) for e in E.T]) if len(extra) else E
+        self.S = self.AE[extra]
+        if len(extra) and not np.linalg.cond(self.S) < self.BORDER_COND:
+            raise SingularTangent("the bordered tangent is singular")
+        self.extra = extra
+
+    def solve(self, b):
+        z = np.zeros(len(self.AE))
+        z[self.keep] = b
+        z = self.lu.solve(z)
+        if len(self.extra):
+            z -= self.AE @ np.linalg.solve(self.S, z[self.extra])
+        return z[self.keep]
+
+
+class _Symbolic:
+    """The QDLDL solver of one sparsity pattern (its ordering and symbolic analysis) and
+    the count of its numeric factorisations, which tells a factor that it is gone."""
+
+    def __init__(self):
+        self.solver, self.generation = None, 0
+
+
+_THREAD = threading.local()
+
+
+def _shared(indptr) -> _Symbolic:
+    """The _Symbolic of the pattern whose CSR indptr is this array, for this thread (paths
+    run one after the other in a thread; a dead pattern's entry is dropped)."""
+    store = _THREAD.__dict__.setdefault("store", {})
+    for key in [k for k, (ref, _) in store.items() if ref() is None]:
+        del store[key]
+    entry = store.get(id(indptr))
+    if entry is None or entry[0]() is not indptr:
+        entry = store[id(indptr)] = (weakref.ref(indptr), _Symbolic())
+    return entry[1]
 
 
 class _Inaccurate(ArithmeticError):

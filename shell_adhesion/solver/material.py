@@ -330,20 +330,25 @@ def lagrangian_derivatives(f, p, m: Material = NEO_HOOKE):
     Shapes: f (5, ...), p (...).  Returns dL/df (5, ...), d2L/df2 (5, 5, ...), J (...),
     dJ (5, ...) (= d2L/df dp), dL/dp (...) and d2L/dp2 (a number).
     """
-    J, dJ, d2J = jacobian(f)
+    # d2L = (dense outer products) + c_eye * I + c_J * d2J: the identity and the sparse d2J
+    # (six symmetric pairs) are added entry by entry, not as (5, 5, ...) arrays
+    j2 = f[_RR] * f[_ZZ] - f[_RZ] * f[_ZR]
+    J = j2 * f[_TT]
+    dJ = np.stack([f[_ZZ] * f[_TT], -f[_ZR] * f[_TT], -f[_RZ] * f[_TT], f[_RR] * f[_TT], j2])
     I1 = np.sum(f * f, axis=0)
     Jm23 = J ** (-2.0 / 3.0)
     Jm53 = Jm23 / J
-    # dI1bar / df and d2I1bar / df2: the whole of neo-Hooke
+    # I1bar: the whole of neo-Hooke
     dW = 2.0 * Jm23 * f - (2.0 / 3.0) * I1 * Jm53 * dJ
-    eye = np.eye(5).reshape((5, 5) + (1,) * (f.ndim - 1))
-    d2W = (2.0 * Jm23 * eye
-           - (4.0 / 3.0) * Jm53 * (f[:, None] * dJ[None, :] + dJ[:, None] * f[None, :])
-           + (10.0 / 9.0) * I1 * Jm53 / J * dJ[:, None] * dJ[None, :]
-           - (2.0 / 3.0) * I1 * Jm53 * d2J)
+    a = (4.0 / 3.0) * Jm53
+    d2W = dJ[:, None] * ((10.0 / 9.0) * I1 * Jm53 / J * dJ - a * f)[None, :]
+    d2W -= (a * f)[:, None] * dJ[None, :]
+    c_eye, c_J = 2.0 * Jm23, -(2.0 / 3.0) * I1 * Jm53
     if m.model in ("yeoh", "gent"):
         g1, g2 = _dg(m, Jm23 * I1 - 3.0)
-        d2W = g1 * d2W + g2 * dW[:, None] * dW[None, :]
+        d2W *= g1
+        d2W += g2 * dW[:, None] * dW[None, :]
+        c_eye, c_J = g1 * c_eye, g1 * c_J
         dW = g1 * dW
     if m.C01_over_C10:
         c = m.C01_over_C10
@@ -351,16 +356,24 @@ def lagrangian_derivatives(f, p, m: Material = NEO_HOOKE):
         Jm43 = Jm23 * Jm23
         Jm73 = Jm43 / J
         dW = dW + c * (Jm43 * dI2 - (4.0 / 3.0) * I2 * Jm73 * dJ)
-        d2W = d2W + c * (Jm43 * d2I2
-                         - (4.0 / 3.0) * Jm73 * (dI2[:, None] * dJ[None, :]
-                                                 + dJ[:, None] * dI2[None, :])
-                         + (28.0 / 9.0) * I2 * Jm73 / J * dJ[:, None] * dJ[None, :]
-                         - (4.0 / 3.0) * I2 * Jm73 * d2J)
+        d2W += c * (Jm43 * d2I2
+                    - (4.0 / 3.0) * Jm73 * (dI2[:, None] * dJ[None, :]
+                                            + dJ[:, None] * dI2[None, :])
+                    + (28.0 / 9.0) * I2 * Jm73 / J * dJ[:, None] * dJ[None, :])
+        c_J = c_J - c * (4.0 / 3.0) * I2 * Jm73
+    for k in range(5):
+        d2W[k, k] += c_eye
+    c_J = c_J + p                                      # p d2J: the multiplier's part
+    for i, j, v in ((_RR, _ZZ, f[_TT]), (_RZ, _ZR, -f[_TT]), (_RR, _TT, f[_ZZ]),
+                    (_ZZ, _TT, f[_RR]), (_RZ, _TT, -f[_ZR]), (_ZR, _TT, -f[_RZ])):
+        cv = c_J * v
+        d2W[i, j] += cv
+        d2W[j, i] += cv
     if m.compressible:
         dLdp, d2Ldp2 = (J - 1.0) - 0.5 * m.D1_times_C10 * p, -0.5 * m.D1_times_C10
     else:
         dLdp, d2Ldp2 = J - 1.0, 0.0
-    return dW + p * dJ, d2W + p * d2J, J, dJ, dLdp, d2Ldp2
+    return dW + p * dJ, d2W, J, dJ, dLdp, d2Ldp2
 
 
 def cauchy_stress(f, p, m: Material = NEO_HOOKE):

@@ -16,9 +16,10 @@ import numpy as np
 
 from .contact import (Constraints, constraints, contact_reactions, deformed_radius, gaps,
                       rim_load)
-from .forms import Discretisation, deformation, potential_energy, tangent, tangent_pattern
+from .forms import (Discretisation, Linearisation, deformation, potential_energy, tangent,
+                    tangent_pattern)
 from .geometry import shown
-from .linear import LinearSolver, SingularTangent, Timer
+from .linear import Bordered, LinearSolver, SingularTangent, Timer
 from .material import limit_state
 from .quality import Quality, quality, worst
 
@@ -70,6 +71,20 @@ class Settings:
     max_points: int = 400     # states per relaxation path
     # speed-ups (solver.linear); each can be switched off, the results agree to round-off
     fast_solver: bool = True  # QDLDL LDL^T, symbolic analysis once per path; False: SuperLU
+    hermite_predictor: bool = True  # relaxation steps start from the cubic through the
+    #                                 last two states (x and dx/ddelta); False: the tangent
+    bordered_event_tangent: bool = True  # after a contact event, the tangent from the event
+    #                                 solve's factorisation bordered by the newly held dofs;
+    #                                 False: a new factorisation
+    modified_newton: bool = True  # in loading and relaxation, a Newton iteration after one
+    #                               that cut the residual by CHORD_GAIN keeps its
+    #                               factorisation (a chord step, no tangent assembled);
+    #                               False: every iteration factorises
+
+
+CHORD_GAIN = 1e-2    # the residual cut of an iteration after which the next is a chord step
+REFINE_MAX = 6        # iterative refinement of the tangent direction from a stale factorisation
+REFINE_TOL = 1e-10    # its last correction relative to the direction
 
 
 @dataclass(frozen=True, eq=False)
@@ -161,6 +176,18 @@ class _Problem:
         self.timer.assembly += time.perf_counter() - t0
         return K, r
 
+    def linearise(self, x) -> Linearisation:
+        t0 = time.perf_counter()
+        lin = Linearisation(self.d, x)
+        self.timer.assembly += time.perf_counter() - t0
+        return lin
+
+    def tangent(self, lin: Linearisation):
+        t0 = time.perf_counter()
+        K, r = lin.tangent()
+        self.timer.assembly += time.perf_counter() - t0
+        return K, r
+
     def factor(self, K, c: Constraints):
         """Factorisation of the free block of K, and d(residual of the free dofs)/d(delta)."""
         try:
@@ -171,6 +198,17 @@ class _Problem:
         e[c.rimz] = 1.0
         dr_ddelta = -(K @ e)[c.free]
         return lu, dr_ddelta
+
+    def bordered(self, lu, c_before, c):
+        """Solves with the free block of c from `lu` of c_before's (solver.linear.Bordered),
+        or None (then the caller factorises)."""
+        t0 = time.perf_counter()
+        try:
+            return Bordered(lu, c_before, c)
+        except (SingularTangent, ValueError, np.linalg.LinAlgError):
+            return None
+        finally:
+            self.timer.factor += time.perf_counter() - t0
 
     def solve(self, lu, rhs):
         try:
@@ -183,21 +221,23 @@ class _Problem:
         scale = np.abs(r[c.fixed]).max()
         return res, res <= self.s.tol * scale + self.s.atol * self.d.force_scale
 
-    def newton(self, c: Constraints, x, delta, target=None):
+    def newton(self, c: Constraints, x, delta, target=None, modified=False):
         """Equilibrium at fixed delta, or (target = outer node) where its gap is zero.
 
         Returns (x, delta, K, r, history).  Raises ConvergenceError.  The time of the
-        bordered solves (target given) is counted as event location.
+        bordered solves (target given) is counted as event location.  `modified`: an
+        iteration after one that cut the residual by CHORD_GAIN keeps that iteration's
+        factorisation (a chord step: no tangent assembled); else full Newton.
         """
         if target is None:
-            return self._newton(c, x, delta)
+            return self._newton(c, x, delta, None, modified)
         t0 = time.perf_counter()
         try:
-            return self._newton(c, x, delta, target)
+            return self._newton(c, x, delta, target, modified)
         finally:
             self.timer.event += time.perf_counter() - t0
 
-    def _newton(self, c: Constraints, x, delta, target=None):
+    def _newton(self, c: Constraints, x, delta, target, modified):
         d = self.d
         if not (math.isfinite(delta) and np.all(np.isfinite(x))):
             raise ConvergenceError(f"non-finite start of Newton (delta = {shown(delta)})")
@@ -210,18 +250,23 @@ class _Problem:
         lu = None
         for _ in range(self.s.max_iter):
             with np.errstate(invalid="ignore", divide="ignore"):  # an inverted trial iterate
-                K, r = self.assemble(x)
+                lin = self.linearise(x)
+            r = lin.r
             if not np.all(np.isfinite(r)):
                 raise ConvergenceError("non-finite residual (element inverted)")
             res, ok = self.converged(r, c)
             history.append(res)
             if ok and (target is None or abs(x[kdof] + self.Z[target]) <= 1e-3 * self.s.gap_tol):
                 self.last_lu = lu if history[1:] else None
+                K, r = self.tangent(lin)
                 return x, delta, K, r, tuple(history)
             if len(history) > 3 and res > 1e3 * history[1]:
                 break
-            lu, dr_dd = self.factor(K, c)
-            self.timer.newton_iterations += 1
+            if modified and lu is not None and res <= CHORD_GAIN * history[-2]:
+                self.timer.chord_iterations += 1    # the last Jacobian is good enough
+            else:
+                lu, dr_dd = self.factor(self.tangent(lin)[0], c)
+                self.timer.newton_iterations += 1
             a = self.solve(lu, -r[c.free])
             if target is None:
                 dx = a
@@ -238,19 +283,34 @@ class _Problem:
     def tangent_direction(self, K, c, lu=None):
         """dx/ddelta (full vector) and dP/ddelta at the state of K.
 
-        `lu` may be the factorisation of the last Newton iterate (same constraints).
+        `lu` may be the factorisation of an earlier Newton iterate (same constraints, or
+        bordered to them): iterative refinement with K then makes dx as accurate as K's own
+        factorisation would (each step multiplies the error by about the relative change of
+        the tangent since); if REFINE_MAX steps do not, K is factorised.
         """
-        if lu is None:
+        fresh = lu is None
+        if fresh:
             lu, _ = self.factor(K, c)
         e = np.zeros(self.d.ndof)
         e[c.rimz] = 1.0
         dr_dd = -(K @ e)[c.free]
-        b_free = self.solve(lu, -dr_dd)
         dx = np.zeros(self.d.ndof)
-        dx[c.free] = b_free
+        dx[c.free] = self.solve(lu, -dr_dd)
+        if not (fresh or self._refined(K, c, lu, dr_dd, dx)):
+            return self.tangent_direction(K, c)
         dx[c.rimz] = -1.0
         dP = -float(np.sum(K[c.rimz] @ dx))
         return dx, dP
+
+    def _refined(self, K, c, lu, dr_dd, dx) -> bool:
+        """Iterative refinement of dx[c.free] (K_ff dx = -dr_dd) in place; False if
+        REFINE_MAX steps do not bring the last correction below REFINE_TOL."""
+        for _ in range(REFINE_MAX):
+            step = self.solve(lu, -dr_dd - (K @ dx)[c.free])
+            dx[c.free] += step
+            if np.abs(step).max() <= REFINE_TOL * np.abs(dx).max():
+                return True
+        return False
 
     def state(self, x, delta, r, held, joined, history, dP=np.nan, centre_off=False,
               check_J=True):
@@ -342,7 +402,9 @@ def load(d: Discretisation, interface: str, delta_max: float,
             held = held + [target]
             x[d.uz(d.capmesh.outer[target])] = -pb.Z[target]
             joined = target
-            c = constraints(d, interface, held)
+            c_event, c = c, constraints(d, interface, held)
+            if settings.bordered_event_tangent and pb.last_lu is not None:
+                reuse = pb.bordered(pb.last_lu, c_event, c)
         released = []
         if interface == "frictionless":
             before = held
@@ -392,11 +454,12 @@ def _advance(pb, c, x, delta, dx, free_nodes, target, step, delta_max):
     g0 = gaps(d, x, free_nodes)
     guess = x + dx * step
     for _ in range(s.max_relocations):
-        xn, dn, Kn, rn, hist = pb.newton(c, guess, delta + step, target)
+        xn, dn, Kn, rn, hist = pb.newton(c, guess, delta + step, target, s.modified_newton)
         if target is not None and dn > delta_max:
             # the event lies beyond the end of the path: stop at delta_max instead
             target, step = None, delta_max - delta
-            xn, dn, Kn, rn, hist = pb.newton(c, x + dx * step, delta_max)
+            xn, dn, Kn, rn, hist = pb.newton(c, x + dx * step, delta_max, None,
+                                             s.modified_newton)
         if dn < delta * (1 - 1e-12):
             raise ConvergenceError(f"the event of outer node {target} was located behind the "
                                    f"last state (delta = {dn:.6g} < {delta:.6g} R)")
@@ -433,7 +496,7 @@ def _release_tensile(pb, x, delta, K, r, held, c, hist):
             break
         held = [h for i, h in enumerate(held) if i != worst]
         c = constraints(d, pb.interface, held)
-        x, delta, K, r, hist = pb.newton(c, x, delta)
+        x, delta, K, r, hist = pb.newton(c, x, delta, None, pb.s.modified_newton)
     return x, K, r, held, c, hist
 
 
@@ -460,15 +523,17 @@ def relax(d: Discretisation, interface: str, start: State, stop, step: float,
     penetration = centre_lifts = False
     inversion_delta = np.nan
     ended_by = f"point limit: {settings.max_points} states"
+    last = None               # the state before (delta, x, dx/ddelta), for the predictor
     while len(states) < settings.max_points:
         try:
-            xn, dn, Kn, rn, hist = pb.newton(c, x - dx * h, delta - h)
+            xn, dn, Kn, rn, hist = _relaxation_step(pb, c, last, (delta, x, dx), h)
         except ConvergenceError:
             h /= 2
             if h < step * 1e-3:
                 ended_by = f"no convergence below delta = {delta:.6g} R"
                 break
             continue
+        last = (delta, x, dx)
         x, delta, K, r = xn, dn, Kn, rn
         dx, dP = pb.tangent_direction(K, c, pb.last_lu)
         pulled = centre_pulled(d, r, held)
@@ -485,6 +550,31 @@ def relax(d: Discretisation, interface: str, start: State, stop, step: float,
         h = min(step, 2 * h)
     return RelaxationPath(interface, start, tuple(states), ended_by, penetration,
                           centre_lifts, timer, inversion_delta)
+
+
+def _relaxation_step(pb, c, last, now, h):
+    """Newton from `now` = (delta, x, dx/ddelta) to delta - h (pb.newton's result).
+
+    The start is the cubic (Hermite) extrapolation through `last` and `now` if
+    settings.hermite_predictor and there is a `last`, else the tangent; a failed cubic start
+    is retried from the tangent, so the predictor never makes a step fail."""
+    delta, x, dx = now
+    if pb.s.hermite_predictor and last is not None:
+        try:
+            return pb.newton(c, _hermite(last, now, delta - h), delta - h, None,
+                             pb.s.modified_newton)
+        except ConvergenceError:
+            pass
+    return pb.newton(c, x - dx * h, delta - h, None, pb.s.modified_newton)
+
+
+def _hermite(a, b, t):
+    """The cubic through the states a, b = (delta, x, dx/ddelta) at delta = t."""
+    (t0, x0, m0), (t1, x1, m1) = a, b
+    L = t1 - t0
+    s = (t - t0) / L
+    return ((2 * s**3 - 3 * s**2 + 1) * x0 + (s**3 - 2 * s**2 + s) * L * m0
+            + (-2 * s**3 + 3 * s**2) * x1 + (s**3 - s**2) * L * m1)
 
 
 def edge_forces(d: Discretisation, r_int, held):

@@ -247,3 +247,16 @@ def test_outputs_can_leave_out_the_curves(local, tmp_path):
     assert "point" not in lean.dims and "loading_state" not in lean.dims
     assert "a_eq_mm" not in lean and "loading_P" not in lean
     xr.testing.assert_identical(lean["P_star"], ds["P_star"])
+
+
+def test_local_cluster_does_not_oversubscribe():
+    """One single-threaded worker per core, each with one BLAS/OpenMP thread (issue 11,
+    item 5): workers x threads <= cores."""
+    import os
+    from shell_adhesion.study.run import _cpu_count, _local_cluster
+    with _local_cluster() as client:
+        threads = client.nthreads()
+        env = client.run(lambda: {k: os.environ.get(k) for k in
+                                  ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")})
+    assert len(threads) == _cpu_count() and set(threads.values()) == {1}
+    assert all(set(e.values()) == {"1"} for e in env.values())

@@ -241,12 +241,13 @@ class PathSet:
             gap = gap[(gap > near.min()) & (gap < near.max())]
             if len(gap):
                 a_pair, G = self.G_reached()
-                G_gap = G[np.isin(a_pair, gap)].max()
+                G_gap = G[np.isin(a_pair, gap)]
+                reached = (f"reached only G/(C10 R) = {np.nanmax(G_gap):.4g}"
+                           if np.isfinite(G_gap).any() else "do not overlap in delta")
                 raise OutOfRange(
                     f"gamma/(C10 R) = {gamma:g}: near the pull-off radius {name} = {a:.4g} R "
-                    f"the relaxation paths reached only G/(C10 R) = {G_gap:.4g} (at a = "
-                    f"{gap[0]:.4g} R), below gamma: the equilibrium curve is bridged there, "
-                    f"so the value is not given")
+                    f"the relaxation paths {reached} (at a = {gap[0]:.4g} R), below gamma: "
+                    f"the equilibrium curve is bridged there, so the value is not given")
         return eq, po
 
 

@@ -56,3 +56,17 @@ def test_energy_is_path_independent(base_coarse):
     U = CubicHermiteSpline(rel.delta[order], rel.U[order], rel.P[order])
     P = CubicHermiteSpline(rel.delta[order], rel.P[order], rel.dP_ddelta[order])
     assert np.allclose(U(mid, 1), P(mid), rtol=2e-3, atol=1e-3 * np.abs(rel.P).max())
+
+
+def test_quintic_hermite_is_exact_for_quintics():
+    """U_E(delta) per path is the quintic Hermite spline through U, P = dU/ddelta and
+    dP/ddelta: a quintic is reproduced with its derivatives, from two states or many."""
+    from shell_adhesion.solver.energy import hermite_quintic
+    c = np.array([0.3, -1.2, 0.7, 2.0, -0.5, 1.1])       # U = sum c_k delta^k
+    U = np.polynomial.Polynomial(c)
+    fine = np.linspace(-0.1, 0.25, 97)
+    for x in (np.array([-0.1, 0.25]), np.array([-0.1, -0.02, 0.05, 0.25])):
+        spline = hermite_quintic(x, U(x), U.deriv(1)(x), U.deriv(2)(x))
+        for nu in (0, 1, 2):
+            np.testing.assert_allclose(spline(fine, nu), U.deriv(nu)(fine), rtol=0,
+                                       atol=1e-12)

@@ -21,7 +21,6 @@ from .mesh import CapMesh, cap_mesh, mesh_spec, uniform_radius
 from .path import LoadingPath, RelaxationPath, Settings, State, load, relax
 from .postprocess import StressMap, profile, spread, stress_map
 
-STEPS_PER_PATH = 8      # relaxation steps down to the stop criterion (about)
 G_SAFETY = 3.0          # relax until the flat-punch estimate of G exceeds G_SAFETY * gamma_max
 UNIFORM_SHARE = 0.9     # pull-off radii must lie within this share of the evenly meshed radius
 
@@ -66,18 +65,19 @@ def relax_from(d: Discretisation, interface: str, start: State, gamma_max: float
                settings: Settings = Settings(), progress=None) -> RelaxationPath:
     """Relax one loaded state until the estimated G exceeds G_SAFETY * gamma_max.
 
-    The step comes from the flat-punch estimate, which needs a positive start stiffness;
-    a start that softens (dP/ddelta <= 0: the shell is buckling under its contact) is
-    relaxed in steps of settings.step_max / STEPS_PER_PATH instead.  `progress(delta)` is
+    The step is 1 / settings.relaxation_steps of the flat-punch estimate of the way down,
+    at most settings.relaxation_step_max; the estimate needs a positive start stiffness,
+    and a start that softens (dP/ddelta <= 0: the shell is buckling under its contact) is
+    relaxed in steps of relaxation_step_max / relaxation_steps instead.  `progress(delta)` is
     called after each state (it may raise to end the path, e.g. on a wall-time limit).
     """
     G_stop = G_SAFETY * gamma_max
     k0 = start.dP_ddelta
     if k0 > 0 and math.isfinite(k0):
         dP_total = np.sqrt(G_stop * 4 * np.pi * start.a ** 2 * k0)
-        step = min(dP_total / k0 / STEPS_PER_PATH, settings.step_max)
+        step = min(dP_total / k0 / settings.relaxation_steps, settings.relaxation_step_max)
     else:
-        step = settings.step_max / STEPS_PER_PATH
+        step = settings.relaxation_step_max / settings.relaxation_steps
     def stop(s):
         if progress is not None:
             progress(s.delta)
@@ -177,7 +177,7 @@ class PathSet:
                 object.__setattr__(self, name, np.full(len(self.loading_delta), np.nan))
 
     def surface(self) -> EnergySurface:
-        return energy_surface([(r.a, r.delta, r.P, r.U) for r in self.usable()])
+        return energy_surface([(r.a, r.delta, r.P, r.U, r.dP_ddelta) for r in self.usable()])
 
     def usable(self) -> tuple:
         """Relaxation paths the energy method uses (by increasing a): those whose contact
@@ -383,7 +383,7 @@ def G_reached(relaxations):
     usable = sorted((r for r in relaxations if r.usable), key=lambda r: r.a)
     if len(usable) < 2:
         return np.zeros(0), np.zeros(0)
-    surf = energy_surface([(r.a, r.delta, r.P, r.U) for r in usable])
+    surf = energy_surface([(r.a, r.delta, r.P, r.U, r.dP_ddelta) for r in usable])
     with np.errstate(invalid="ignore"):
         G = np.array([np.nanmax(g) if np.isfinite(g).any() else np.nan for g in surf.G])
     return surf.a_pair, G

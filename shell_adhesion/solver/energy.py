@@ -1,8 +1,9 @@
 """Maugis' energy ("graphical") method on loading and relaxation paths.
 
 Dimensionless throughout: lengths / R, forces / (C10 R^2), energies / (C10 R^3),
-gamma / (C10 R).  For each held contact radius a, U_E(a, delta) is a cubic Hermite
-spline in delta (its delta-derivative is P_rel exactly).  G(A, delta) = dU_E/dA at fixed
+gamma / (C10 R).  For each held contact radius a, U_E(a, delta) is a quintic Hermite
+spline in delta through U_E, P = dU_E/ddelta and dP/ddelta at every state (its
+delta-derivative is P_rel exactly; error O(step^6), so a path needs few states).  G(A, delta) = dU_E/dA at fixed
 delta is the central difference between neighbouring paths, which is second-order
 accurate at the midpoint in A = pi a^2 of the pair and needs only the two paths to
 overlap in delta.  G does not depend on gamma, so it is built once per shell; every gamma
@@ -12,11 +13,16 @@ of the equilibrium curve in a (pull-off points are extrema of smooth curves, not
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.interpolate import CubicHermiteSpline, CubicSpline
+from scipy.interpolate import BPoly, CubicSpline
 
 
 class OutOfRange(ValueError):
     """The requested gamma is outside what the stored paths cover."""
+
+
+def hermite_quintic(x, y, dy, d2y) -> BPoly:
+    """The piecewise quintic through y and its first two derivatives at increasing x."""
+    return BPoly.from_derivatives(x, np.column_stack([y, dy, d2y]))
 
 
 @dataclass(frozen=True, eq=False)
@@ -48,15 +54,16 @@ class EnergySurface:
 def energy_surface(paths, n_grid=2000) -> EnergySurface:
     """Build U_E(a, delta) and G(a, delta) from relaxation paths of increasing a.
 
-    `paths` is a sequence of (a, delta[], P[], U[]) with delta decreasing from delta1.
+    `paths` is a sequence of (a, delta[], P[], U[], dP_ddelta[]) with delta decreasing
+    from delta1.
     """
     a = np.array([p[0] for p in paths])
     if np.any(np.diff(a) <= 0):
         raise ValueError("relaxation paths must have increasing contact radii")
     splines, lo, d1, P1 = [], [], [], []
-    for _, delta, P, U in paths:
+    for _, delta, P, U, dP in paths:
         order = np.argsort(delta)
-        splines.append(CubicHermiteSpline(delta[order], U[order], P[order]))
+        splines.append(hermite_quintic(delta[order], U[order], P[order], dP[order]))
         lo.append(delta.min())
         d1.append(delta[0])
         P1.append(P[0])

@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 from scipy import stats
-from scipy.interpolate import CubicSpline
+from scipy.interpolate import CubicHermiteSpline, CubicSpline
 
 from shell_adhesion.solver.geometry import InputError
 from shell_adhesion.solver.theory import jkr_P_star_N, shell_law_scale_N
@@ -438,6 +438,8 @@ def _held_P_at_zero(ds, point, a_mm):
     a = _select(ds["relaxation_a_mm"], **shell).values
     D = _select(ds["relaxation_delta_mm"], **shell).values
     P = _select(ds["relaxation_P"], C10=point["C10"], **shell).values
+    K = (_select(ds["relaxation_dP_ddelta"], C10=point["C10"], **shell).values
+         if "relaxation_dP_ddelta" in ds else np.full_like(P, np.nan))
     # paths the energy method left out (the centre lifts, a free node touches) hold no clean
     # contact zone
     used = (_select(ds["relaxation_used"], **shell).values == 1 if "relaxation_used" in ds
@@ -445,13 +447,16 @@ def _held_P_at_zero(ds, point, a_mm):
     a0, P0 = [], []
     for k in range(len(a)):
         ok = np.isfinite(D[k]) & np.isfinite(P[k])
-        d, p = D[k][ok], P[k][ok]
+        d, p, s = D[k][ok], P[k][ok], K[k][ok]
         if not (used[k] and np.isfinite(a[k])) or len(d) < 2 or not d.min() <= 0 <= d.max():
             continue
         o = np.argsort(d)
-        d, p = d[o], p[o]
+        d, p, s = d[o], p[o], s[o]
         a0.append(a[k])
-        P0.append(float(CubicSpline(d, p)(0.0)) if len(d) >= 4 else float(np.interp(0, d, p)))
+        if np.all(np.isfinite(s)):      # the states' stiffness: cubic Hermite in delta
+            P0.append(float(CubicHermiteSpline(d, p, s)(0.0)))
+        else:
+            P0.append(float(CubicSpline(d, p)(0.0)) if len(d) >= 4 else float(np.interp(0, d, p)))
     if len(a0) < 2 or not min(a0) <= a_mm <= max(a0):
         span = f"{min(a0):.4g} to {max(a0):.4g} mm" if a0 else "none"
         return f"held radii of the paths reaching delta = 0: {span}"

@@ -38,7 +38,7 @@ def _values(result):
         loading["P_error"] = curve_error(loading["delta"], loading["P"],
                                          L(cps.loading_delta), F(cps.loading_P))
     relaxations = [dict(a=float(L(r.a)), delta=L(r.delta), P=F(r.P), U=E(r.U),
-                        V=V(r.V), p=kPa(r.p),
+                        dP=F(r.dP_ddelta) / R, V=V(r.V), p=kPa(r.p),
                         ended_by=r.ended_by, centre_lifts=bool(r.centre_lifts),
                         penetration=bool(r.penetration), usable=r.usable)
                    for r in ps.relaxations] if result.adhesion else []
@@ -93,7 +93,7 @@ def as_dict(result) -> dict:
         out["relaxation"] = [
             {"a_mm": _num(r["a"]), "delta1_mm": _num(r["delta"][0]), "P1_N": _num(r["P"][0]),
              "delta_mm": _list(r["delta"]), "P_N": _list(r["P"]), "U_E_mJ": _list(r["U"]),
-             "ended_by": r["ended_by"], "centre_lifts": r["centre_lifts"],
+             "dP_ddelta_N_mm": _list(r["dP"]), "ended_by": r["ended_by"], "centre_lifts": r["centre_lifts"],
              "penetration": r["penetration"],
              **({"V_mm3": _list(r["V"]), "p_kPa": _list(r["p"])} if closed else {})}
             for r in relaxations]
@@ -187,6 +187,8 @@ def as_dataset(result) -> xr.Dataset:
             "N", "rim force P along the relaxation at fixed contact radius"))
         data["relaxation_U"] = (K, _padded([r["U"] for r in relaxations]), _attrs(
             "mJ", "strain energy U_E along the relaxation at fixed contact radius"))
+        data["relaxation_dP_ddelta"] = (K, _padded([r["dP"] for r in relaxations]), _attrs(
+            "N/mm", "stiffness dP/d(delta) along the relaxation at fixed contact radius"))
         data["relaxation_used"] = ("relaxation", np.array(
             [int(r["usable"]) for r in relaxations], dtype=np.int8), _attrs(
             "1", "path used by the energy method (1), or left out because the centre lifts "

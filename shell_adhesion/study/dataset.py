@@ -543,6 +543,7 @@ def _relaxation_curves(served, index, shells, C10s, R) -> dict:
     delta = _padded(shells, {j: [r.delta for r in v] for j, v in rel.items()}, width)
     P = _padded(shells, {j: [r.P for r in v] for j, v in rel.items()}, width)
     U = _padded(shells, {j: [r.U for r in v] for j, v in rel.items()}, width)
+    dP = _padded(shells, {j: [r.dP_ddelta for r in v] for j, v in rel.items()}, width)
     a = _padded(shells, {j: [r.a for r in v] for j, v in rel.items()}, ())
     used = _padded(shells, {j: [float(r.usable) for r in v]
                             for j, v in rel.items()}, ())
@@ -560,6 +561,8 @@ def _relaxation_curves(served, index, shells, C10s, R) -> dict:
             "N", "rim force P along the relaxation at fixed contact radius")),
         "relaxation_U": (("C10", *K), energy_mJ(U[None], c, R), _attrs(
             "mJ", "strain energy U_E along the relaxation at fixed contact radius")),
+        "relaxation_dP_ddelta": (("C10", *K), force_N(dP[None], c, R) / R, _attrs(
+            "N/mm", "stiffness dP/d(delta) along the relaxation at fixed contact radius")),
     }
 
 
@@ -635,7 +638,7 @@ def _global_attrs(plan: Plan, history: str) -> dict:
         gamma_max_ladder=", ".join(str(m) for m in LADDER) + " x 10^k",
         solver_version=solver.__version__, solver_source_sha256=solver_source_sha256(),
         **{f"solver_{k}": int(v) if isinstance(v, bool) else v for k, v in asdict(s).items()},
-        relaxation_G_SAFETY=case.G_SAFETY, relaxation_STEPS_PER_PATH=case.STEPS_PER_PATH,
+        relaxation_G_SAFETY=case.G_SAFETY,
     )
 
 

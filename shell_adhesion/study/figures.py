@@ -19,6 +19,7 @@ from pathlib import Path
 
 import numpy as np
 from matplotlib import colormaps
+from scipy.interpolate import CubicHermiteSpline
 from matplotlib.figure import Figure
 from matplotlib.patches import Rectangle
 from matplotlib.tri import Triangulation
@@ -201,11 +202,27 @@ def _colours(n):
 
 
 def _relaxation(ds, p, k):
-    """(delta, P) of relaxation path k of the shell at `p` (NaN padding removed)."""
-    d = ds["relaxation_delta_mm"].sel(_shell(ds, p)).values[k]
-    P = ds["relaxation_P"].sel(C10=p["C10"], **_shell(ds, p)).values[k]
+    """(delta [mm], P [N], dP/ddelta [N/mm]) at the states of relaxation path k of the
+    shell at `p` (NaN padding removed)."""
+    shell = _shell(ds, p)
+    d = ds["relaxation_delta_mm"].sel(shell).values[k]
+    P = ds["relaxation_P"].sel(C10=p["C10"], **shell).values[k]
+    dP = ds["relaxation_dP_ddelta"].sel(C10=p["C10"], **shell).values[k]
     keep = ~np.isnan(d)
-    return d[keep], P[keep]
+    return d[keep], P[keep], dP[keep]
+
+
+def _relaxation_curve(ds, p, k, per_step=12):
+    """(delta [mm], P [N]) along relaxation path k, decreasing delta: the cubic Hermite
+    curve through its states (P and dP/ddelta), `per_step` points per step, for plots."""
+    d, P, dP = _relaxation(ds, p, k)
+    if len(d) < 2:
+        return d, P
+    o = np.argsort(d)
+    curve = CubicHermiteSpline(d[o], P[o], dP[o])
+    fine = np.interp(np.linspace(0, len(d) - 1, per_step * (len(d) - 1) + 1),
+                     np.arange(len(d)), d)
+    return fine, curve(fine)
 
 
 def fig_load_relaxation(ds, at=None, n_paths=8, ax=None):
@@ -235,10 +252,10 @@ def fig_load_relaxation(ds, at=None, n_paths=8, ax=None):
     others = [i for i in range(n) if i != k]      # grey: n_paths - 1 others, evenly in a
     pick = np.unique(np.linspace(0, len(others) - 1, min(n_paths - 1, len(others))).round())
     for m, i in enumerate(others[int(j)] for j in pick):
-        d, P = _relaxation(ds, p, i)
+        d, P = _relaxation_curve(ds, p, i)
         ax.plot(d, P, color="0.6", lw=0.8,
                 label="other relaxations at fixed a (steeper: larger a)" if m == 0 else None)
-    d, P = _relaxation(ds, p, k)
+    d, P = _relaxation_curve(ds, p, k)
     dB = float(np.interp(ra[k], a_eq, d_eq))
     PB = float(np.interp(dB, d[::-1], P[::-1]))
     d1, P1 = d[0], P[0]
@@ -282,9 +299,10 @@ def _surface(ds, p):
     used = ds["relaxation_used"].sel(shell).values == 1
     paths = []
     for k in np.flatnonzero(used & ~np.isnan(a)):
-        d, P = _relaxation(ds, p, k)
+        d, P, dP = _relaxation(ds, p, k)
         U = ds["relaxation_U"].sel(C10=C10, **shell).values[k][:len(d)]
-        paths.append((a[k] / R, d / R, P / (C10 * R ** 2), U / (C10 * R ** 3)))
+        paths.append((a[k] / R, d / R, P / (C10 * R ** 2), U / (C10 * R ** 3),
+                      dP / (C10 * R)))
     paths.sort(key=lambda x: x[0])
     return energy_surface(paths)
 

@@ -53,7 +53,7 @@ def pathset_key(t_over_R, h_over_R, interface, mesh, delta_max_over_R, gamma_max
         "delta_max_over_R": float(delta_max_over_R),
         "gamma_max_hat": float(gamma_max_hat),
         "settings": asdict(settings),
-        "relaxation_rule": {"G_SAFETY": case.G_SAFETY, "STEPS_PER_PATH": case.STEPS_PER_PATH},
+        "relaxation_rule": {"G_SAFETY": case.G_SAFETY},
         "version": solver.__version__,
         "solver_source": solver_source_sha256(),
     }

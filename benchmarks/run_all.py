@@ -1,8 +1,10 @@
 """Benchmark table: the base shell (t/R = 0.15, h = R, R = 20 mm, C10 = 0.3 MPa) on one
-process, with and without the speed-ups, back to back: "all" (the defaults), "no newton"
-(Settings.hermite_predictor, modified_newton and bordered_event_tangent off: one
+process, with and without the speed-ups, back to back, each row switching more off:
+"all" (the defaults), "dense" (the relaxation paths sampled as before the quintic energy
+splines: Settings.relaxation_steps 8, relaxation_step_max 0.02 R), "no-newton" (also
+Settings.hermite_predictor, modified_newton and bordered_event_tangent off: one
 factorisation per Newton iteration and per tangent, from the tangent predictor), "superlu"
-(those off and Settings.fast_solver off too).  The assembly is the same in all three.
+(also Settings.fast_solver off).  The assembly is the same in all four.
 
 Rows: the no_slip and frictionless loading curves to delta = R/4 (5 mm), and the whole
 pull-off (loading, every relaxation path, energy method for gamma = 10..50 J/m^2).
@@ -11,7 +13,7 @@ factorisations, wall time and its split (assembly,
 factorisation, triangular solves, bordered event solves (part of the others), energy
 method), the headline number (P at 5 mm, or P* at gamma = 30 J/m^2, in N).
 
-Run: python benchmarks/run_all.py [--mesh default] [--settings all [no-newton [superlu]]]
+Run: python benchmarks/run_all.py [--mesh default] [--settings all [dense [no-newton [superlu]]]]
 """
 import argparse
 import time
@@ -46,8 +48,10 @@ def pull_off_row(mesh, settings):
                 force_N(P_star[GAMMAS_J_M2.index(30.0)], C10_MPA, R_MM))
 
 
-NEWTON_OFF = dict(hermite_predictor=False, modified_newton=False, bordered_event_tangent=False)
-SETTINGS = {"all": Settings(), "no-newton": Settings(**NEWTON_OFF),
+DENSE = dict(relaxation_steps=8, relaxation_step_max=0.02)
+NEWTON_OFF = dict(hermite_predictor=False, modified_newton=False, bordered_event_tangent=False,
+                  **DENSE)
+SETTINGS = {"all": Settings(), "dense": Settings(**DENSE), "no-newton": Settings(**NEWTON_OFF),
             "superlu": Settings(fast_solver=False, **NEWTON_OFF)}
 
 

@@ -260,3 +260,32 @@ def test_local_cluster_does_not_oversubscribe():
                                   ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")})
     assert len(threads) == _cpu_count() and set(threads.values()) == {1}
     assert all(set(e.values()) == {"1"} for e in env.values())
+
+
+def test_rerun_of_the_same_cube_rewrites_nothing(local, tmp_path):
+    """A rerun whose cube has the content of the one on disk keeps that cube and its tables
+    and figures (a warm run writes nothing); a product deleted since is written again."""
+    _, study, cat, ds = local
+    run = lambda: execute(study, tmp_path / "results", scheduler=UNREACHABLE, catalogue=cat,
+                          progress=False)
+    first = run()
+    assert not first.products.kept and first.products.figures and first.products.tables
+    files = [first.output, *first.products.tables, *first.products.figures]
+    written = {f: f.stat().st_mtime_ns for f in files}
+    again = run()
+    assert again.products.kept and again.exit_code == 0
+    assert {f: f.stat().st_mtime_ns for f in files} == written
+    assert "kept: the cube's content is unchanged" in summary(again)
+    same_results(load(again.output), ds)
+    first.products.figures[0].unlink()
+    third = run()
+    assert not third.products.kept and first.products.figures[0].is_file()
+
+
+def test_content_digest_sees_values_not_history(local):
+    ds = local[3]
+    other = ds.copy(deep=True)
+    other.attrs["history"] = "another run"
+    assert dataset.content_sha256(other) == dataset.content_sha256(ds)
+    other["P_star"].values[(0,) * other["P_star"].ndim] *= 1 + 1e-15
+    assert dataset.content_sha256(other) != dataset.content_sha256(ds)

@@ -6,6 +6,7 @@ A `PathSet` holds only arrays, so it can be stored, shipped to other processes a
 post-processed for any C10, R and gamma (DESIGN.md section 3).
 """
 from dataclasses import dataclass, field, replace
+from functools import cached_property
 import math
 import time
 
@@ -177,6 +178,11 @@ class PathSet:
                 object.__setattr__(self, name, np.full(len(self.loading_delta), np.nan))
 
     def surface(self) -> EnergySurface:
+        """U_E(a, delta) and G of the usable paths (built once: the set is immutable)."""
+        return self._surface
+
+    @cached_property
+    def _surface(self) -> EnergySurface:
         return energy_surface([(r.a, r.delta, r.P, r.U, r.dP_ddelta) for r in self.usable()])
 
     def usable(self) -> tuple:
@@ -188,7 +194,11 @@ class PathSet:
         """(a_pair, G_max): for each pair of neighbouring usable paths, the radius of its
         midpoint and the largest G / (C10 R) its relaxations reached (the largest gamma
         that pair can put in equilibrium)."""
-        return G_reached(self.relaxations)
+        return self._G_reached
+
+    @cached_property
+    def _G_reached(self):
+        return _G_max(self.surface()) if len(self.usable()) >= 2 else (np.zeros(0),) * 2
 
     def unreached(self, gamma: float) -> np.ndarray:
         """Pair radii a / R whose relaxations stopped before G reached gamma / (C10 R):
@@ -383,7 +393,10 @@ def G_reached(relaxations):
     usable = sorted((r for r in relaxations if r.usable), key=lambda r: r.a)
     if len(usable) < 2:
         return np.zeros(0), np.zeros(0)
-    surf = energy_surface([(r.a, r.delta, r.P, r.U, r.dP_ddelta) for r in usable])
+    return _G_max(energy_surface([(r.a, r.delta, r.P, r.U, r.dP_ddelta) for r in usable]))
+
+
+def _G_max(surf: EnergySurface):
     with np.errstate(invalid="ignore"):
         G = np.array([np.nanmax(g) if np.isfinite(g).any() else np.nan for g in surf.G])
     return surf.a_pair, G

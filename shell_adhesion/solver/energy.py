@@ -21,8 +21,18 @@ class OutOfRange(ValueError):
 
 
 def hermite_quintic(x, y, dy, d2y) -> BPoly:
-    """The piecewise quintic through y and its first two derivatives at increasing x."""
-    return BPoly.from_derivatives(x, np.column_stack([y, dy, d2y]))
+    """The piecewise quintic through y and its first two derivatives at increasing x
+    (Bernstein coefficients of each interval from the end values, as
+    BPoly.from_derivatives gives them, for all intervals at once)."""
+    x, y, dy, d2y = (np.asarray(v, dtype=float) for v in (x, y, dy, d2y))
+    h = np.diff(x)
+    c = np.empty((6, len(h)))
+    c[0], c[5] = y[:-1], y[1:]
+    c[1] = y[:-1] + h * dy[:-1] / 5
+    c[4] = y[1:] - h * dy[1:] / 5
+    c[2] = y[:-1] + 2 * h * dy[:-1] / 5 + h ** 2 * d2y[:-1] / 20
+    c[3] = y[1:] - 2 * h * dy[1:] / 5 + h ** 2 * d2y[1:] / 20
+    return BPoly(c, x)
 
 
 @dataclass(frozen=True, eq=False)

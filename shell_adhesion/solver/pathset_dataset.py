@@ -113,13 +113,13 @@ def _relaxations_of(ds: xr.Dataset, views=()) -> tuple:
     lengths = ds["relaxation_length"].values
     ends = np.cumsum(lengths)
     starts = ends - lengths
+    # fields stored before the cavity existed are absent: an open shell
+    columns = {f: ds[f"relaxation_{f.name}"].values for f in _stored(Relaxation)
+               if f"relaxation_{f.name}" in ds or f.name not in _CAVITY_FIELDS}
     rel = []
     for k, (s, e) in enumerate(zip(starts, ends)):
         kw = {}
-        for f in _stored(Relaxation):
-            if f"relaxation_{f.name}" not in ds and f.name in _CAVITY_FIELDS:
-                continue     # stored before the cavity existed: an open shell
-            v = ds[f"relaxation_{f.name}"].values
+        for f, v in columns.items():
             if _is_array(f):
                 kw[f.name] = v[s:e]
             else:

@@ -44,6 +44,7 @@ cavity_p_atm_kPa, cavity_p0_kPa and cavity_gas_exponent (sealed).
 CF-1.8 compliance checker without a high-priority failure.
 """
 from dataclasses import asdict, fields
+import hashlib
 from datetime import datetime, timezone
 
 import numpy as np
@@ -710,6 +711,20 @@ def write(ds: xr.Dataset, path) -> None:
         if ds[c].dtype.kind == "f" and (c in ds.dims or not ds[c].isnull().any()):
             enc.setdefault(c, {})["_FillValue"] = None
     write_atomic(ds, path, enc)
+
+
+def content_sha256(ds: xr.Dataset) -> str:
+    """Digest of what the cube holds: every variable's name, dimensions, type, attributes
+    and values, and the global attributes but `history` (when and how it was written)."""
+    h = hashlib.sha256()
+    for name in sorted(ds.variables):
+        v = ds.variables[name]
+        h.update(repr((name, v.dims, str(v.dtype), sorted(v.attrs.items()))).encode())
+        values = np.ascontiguousarray(v.values)
+        h.update(repr(values.tolist()).encode() if values.dtype.kind == "O"
+                 else values.tobytes())
+    h.update(repr(sorted((k, v) for k, v in ds.attrs.items() if k != "history")).encode())
+    return h.hexdigest()
 
 
 def summary_counts(ds: xr.Dataset) -> dict:

@@ -4,10 +4,15 @@ all read from the results netCDF (never from the solver).
     results/<name>.nc               the cube (study.dataset)
     results/<name>_tables/          cases.{csv,md,tex}, paper.{csv,md,tex}, analysis.txt
     results/<name>_figures/         fig2 ... fig6b as PNG and PDF (study.figures)
+    results/<name>_products.json    digests of the cube's content and file, and the files
+                                    written from it
 
-Every file is written atomically (catalogue.atomic).
+Every file is written atomically (catalogue.atomic).  A run whose cube has the content of
+the one already there, with every file the manifest lists present, rewrites nothing.
 """
 from dataclasses import dataclass, field
+import hashlib
+import json
 from pathlib import Path
 import time
 
@@ -36,6 +41,49 @@ class Products:
     figures: list = field(default_factory=list)
     skipped: dict = field(default_factory=dict)
     seconds: dict = field(default_factory=dict)
+    kept: bool = False      # the files of an earlier run of the same cube, not rewritten
+
+
+def manifest_path(results_nc) -> Path:
+    """results/<name>_products.json for results/<name>.nc."""
+    path = Path(results_nc)
+    return path.with_name(f"{path.stem}_products.json")
+
+
+def _file_sha256(path) -> str:
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def record_products(results_nc, digest: str, products: Products) -> Path:
+    """Write the manifest: the digests of the cube's content (study.dataset.content_sha256)
+    and of its file, and the products written from it."""
+    text = json.dumps({"content_sha256": digest, "cube_sha256": _file_sha256(results_nc),
+                       "tables": [str(p) for p in products.tables],
+                       "figures": [str(p) for p in products.figures],
+                       "skipped": products.skipped}, indent=1)
+    return write_text_atomic(manifest_path(results_nc), text + "\n")
+
+
+def kept_products(results_nc, digest: str):
+    """The products of an earlier run whose cube had content `digest` (Products with
+    kept=True), if its manifest says so, the cube at `results_nc` is the file it was
+    written for and every listed file exists; else None."""
+    try:
+        record = json.loads(manifest_path(results_nc).read_text())
+        if record.get("content_sha256") != digest:
+            return None
+        if record.get("cube_sha256") != _file_sha256(results_nc):
+            return None
+    except (OSError, ValueError, AttributeError):
+        return None
+    tables, figures = ([Path(f) for f in record.get(k, [])] for k in ("tables", "figures"))
+    if not all(f.is_file() for f in tables + figures):
+        return None
+    return Products(tables, figures, dict(record.get("skipped", {})), kept=True)
 
 
 def write_tables(ds: xr.Dataset, out_dir) -> list:

@@ -42,7 +42,7 @@ from . import dataset, interrupt
 from .config import StudyError, load_study, validate
 from .keys import relaxation_part, solver_source_sha256
 from .plan import Plan, Shell, make_plan, restrict, served_key
-from .products import Products, write_products
+from .products import Products, kept_products, record_products, write_products
 from .progress import Progress
 
 DEFAULT_OUT = "results"
@@ -466,9 +466,10 @@ def execute(study, out=None, catalogue=None, scheduler=None, progress=True, work
     out_dir = check_out(out if out is not None else DEFAULT_OUT)
     _writable_folder("catalogue", catalogue if catalogue is not None else default_dir())
     output = out_dir / f"{study.name}.nc"
-    with _quiet_dask():
+    all_held = _held_by_index(plan, catalogue) == len(plan.all_shells)
+    with _quiet_dask(needed=not all_held):
         client = None
-        if scheduler and _held_by_index(plan, catalogue) < len(plan.all_shells):
+        if scheduler and not all_held:
             client = _connect_external(scheduler)       # before anything is created
         try:
             with interrupt.watched():
@@ -483,9 +484,14 @@ def execute(study, out=None, catalogue=None, scheduler=None, progress=True, work
 
 
 @contextmanager
-def _quiet_dask():
+def _quiet_dask(needed=True):
     """dask.distributed's own log lines (its tracebacks of a lost connection) are not
-    shown: the run reports what happened in one line."""
+    shown: the run reports what happened in one line.  Not `needed` (the catalogue's index
+    holds every set): distributed is not imported (1 s); should a set turn out unreadable
+    and be computed after all, dask's log lines are then not silenced."""
+    if not needed:
+        yield
+        return
     importlib.import_module("distributed")      # its import configures its loggers
     names = ["distributed"] + [n for n in logging.root.manager.loggerDict
                                if n.startswith("distributed.")]
@@ -552,11 +558,15 @@ def _execute(plan, out_dir, output, catalogue, scheduler, client, show, workers,
         ds = dataset.build(plan, served, failed_th, history)
         progress.update("energy method", len(plan.points))
         progress.start("cube")
-        dataset.write(ds, output)
-        try:
-            products = write_products(output)
-        except Exception as e:      # the cube is written; a drawing bug must not lose it
-            products = Products(skipped={"tables and figures": _reason("products", e)})
+        digest = dataset.content_sha256(ds)
+        products = kept_products(output, digest)    # the same cube: nothing to rewrite
+        if products is None:
+            dataset.write(ds, output)
+            try:
+                products = write_products(output)
+                record_products(output, digest, products)
+            except Exception as e:      # the cube is written; a drawing bug must not lose it
+                products = Products(skipped={"tables and figures": _reason("products", e)})
         progress.update("cube", 1, note=str(output))
         counts = dataset.summary_counts(ds)
         bad = counts["solver failed"] + counts["out of range"]
@@ -685,11 +695,13 @@ def summary(outcome: Outcome, ds=None) -> str:
         lines.append(f"  discarded a corrupt catalogue entry: {d}")
     pr = outcome.products
     if pr is not None:
+        kept = " (kept: the cube's content is unchanged)" if pr.kept else ""
         if pr.tables:
-            lines.append(f"tables: {len(pr.tables)} files in {pr.tables[0].parent}")
+            lines.append(f"tables: {len(pr.tables)} files in {pr.tables[0].parent}{kept}")
         if pr.figures:
             lines.append(f"figures: {len(pr.figures)} files in {pr.figures[0].parent} "
-                         f"({pr.seconds.get('total', 0):.1f} s for tables and figures)")
+                         + (kept.strip() if kept else
+                            f"({pr.seconds.get('total', 0):.1f} s for tables and figures)"))
         for name, why in pr.skipped.items():
             lines.append(f"  skipped {name}: {why}")
     lines.append(f"wall time {outcome.wall_s:.1f} s; results in {outcome.output}")

@@ -198,7 +198,7 @@ class PathSet:
 
     @cached_property
     def _G_reached(self):
-        return _G_max(self.surface()) if len(self.usable()) >= 2 else (np.zeros(0),) * 2
+        return G_reached(self.relaxations, self.surface)
 
     def unreached(self, gamma: float) -> np.ndarray:
         """Pair radii a / R whose relaxations stopped before G reached gamma / (C10 R):
@@ -388,15 +388,14 @@ def pathset_of(t, h, interface, mesh, delta_max, gamma_max, loading, relaxations
                    loading.array("V"), loading.array("p"), cavity)
 
 
-def G_reached(relaxations):
-    """(a_pair, G_max) of the usable relaxation paths (see PathSet.G_reached)."""
+def G_reached(relaxations, surface=None):
+    """(a_pair, G_max) of the usable relaxation paths (see PathSet.G_reached); `surface()`
+    gives their energy surface if it is already built."""
     usable = sorted((r for r in relaxations if r.usable), key=lambda r: r.a)
     if len(usable) < 2:
         return np.zeros(0), np.zeros(0)
-    return _G_max(energy_surface([(r.a, r.delta, r.P, r.U, r.dP_ddelta) for r in usable]))
-
-
-def _G_max(surf: EnergySurface):
+    surf = surface() if surface is not None else energy_surface(
+        [(r.a, r.delta, r.P, r.U, r.dP_ddelta) for r in usable])
     with np.errstate(invalid="ignore"):
         G = np.array([np.nanmax(g) if np.isfinite(g).any() else np.nan for g in surf.G])
     return surf.a_pair, G

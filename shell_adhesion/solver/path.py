@@ -79,8 +79,8 @@ class Settings:
     modified_newton: bool = True  # in loading and relaxation, a Newton iteration after one
     #                               that cut the residual by CHORD_GAIN keeps its
     #                               factorisation (a chord step, no tangent assembled), and
-    #                               a step at unchanged constraints starts with a chord step
-    #                               from the newest factorisation; False: every iteration
+    #                               a no_slip loading step starts with a chord step from
+    #                               the newest factorisation; False: every iteration
     #                               factorises
     # relaxation sampling (solver.case.relax_from): steps down to the stop criterion, and
     # the largest step.  The energy method's quintic Hermite splines (U, P, dP/ddelta) make
@@ -251,10 +251,11 @@ class _Problem:
         finally:
             self.timer.event += time.perf_counter() - t0
 
-    def fresh(self, lu, c) -> bool:
-        """lu is the newest factorisation (QDLDL keeps only that one of a pattern), and
-        of the constraints c."""
-        return lu is not None and self.newest[0] is lu and self.newest[1] is c
+    def newest_of(self, c):
+        """(factorisation, dr/ddelta) of the newest factorisation if it is of the
+        constraints c, else (None, None): QDLDL keeps only the newest one of a pattern."""
+        lu, c_lu, dr_dd = self.newest
+        return (lu, dr_dd) if lu is not None and c_lu is c else (None, None)
 
     def _newton(self, c: Constraints, x, delta, target, modified, chord_start):
         d = self.d
@@ -266,8 +267,7 @@ class _Problem:
             kdof = d.uz(d.capmesh.outer[target])
             kpos = c.free_pos[kdof]
         history = []
-        lu, dr_dd = (self.newest[::2] if modified and chord_start
-                     and self.fresh(self.newest[0], c) else (None, None))
+        lu, dr_dd = self.newest_of(c) if modified and chord_start else (None, None)
         for _ in range(self.s.max_iter):
             with np.errstate(invalid="ignore", divide="ignore"):  # an inverted trial iterate
                 lin = self.linearise(x)
@@ -419,7 +419,7 @@ def load(d: Discretisation, interface: str, delta_max: float,
         _, dP_left = pb.tangent_direction(K, c, pb.last_lu)
         # the newest factorisation of c (the step's last, or K's if refinement needed it):
         # QDLDL has dropped any older one
-        live = pb.newest[0] if pb.newest[1] is c else None
+        live = pb.newest_of(c)[0]
         reuse = live if target is None else None
         joined = -1
         if target is not None:

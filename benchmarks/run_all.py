@@ -2,7 +2,7 @@
 process, with and without the speed-ups, back to back, each row switching more off:
 "all" (the defaults), "dense" (the relaxation paths sampled as before the quintic energy
 splines: Settings.relaxation_steps 8, relaxation_step_max 0.02 R), "no-newton" (also
-Settings.hermite_predictor, modified_newton and bordered_event_tangent off: one
+Settings.hermite_predictor, modified_newton, bordered_event_tangent and start_tangent off: one
 factorisation per Newton iteration and per tangent, from the tangent predictor), "superlu"
 (also Settings.fast_solver off).  The assembly is the same in all four.
 
@@ -50,7 +50,7 @@ def pull_off_row(mesh, settings):
 
 DENSE = dict(relaxation_steps=8, relaxation_step_max=0.02)
 NEWTON_OFF = dict(hermite_predictor=False, modified_newton=False, bordered_event_tangent=False,
-                  **DENSE)
+                  start_tangent=False, **DENSE)
 SETTINGS = {"all": Settings(), "dense": Settings(**DENSE), "no-newton": Settings(**NEWTON_OFF),
             "superlu": Settings(fast_solver=False, **NEWTON_OFF)}
 

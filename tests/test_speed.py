@@ -127,3 +127,19 @@ def test_sparse_relaxation_sampling_moves_the_pull_off_by_less_than_0_05_percent
                                                          rel=5e-4), name
     states = lambda ps: sum(len(r.delta) for r in ps.relaxations)
     assert states(sparse) < 0.8 * states(dense)
+
+
+@pytest.mark.parametrize("t, h, delta_max, gamma_max", [(0.15, 1.0, 0.02, 0.005),
+                                                         (0.02, 1.0, 0.03, 0.006)],
+                         ids=["base", "thin"])
+def test_relaxations_start_from_the_loading_tangent(t, h, delta_max, gamma_max):
+    """Settings.start_tangent: a relaxation path starts from the dx/ddelta its loading
+    state holds instead of a new tangent and factorisation: the same paths, one
+    factorisation fewer per path."""
+    on, off = paths(t, h, delta_max, gamma_max), paths(t, h, delta_max, gamma_max,
+                                                       "start_tangent")
+    same_paths(on, off)
+    n = len(on.relaxations)
+    assert n >= 4
+    assert (on.stats["timing"]["factorisations"]
+            <= off.stats["timing"]["factorisations"] - n)

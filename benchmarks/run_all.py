@@ -13,6 +13,10 @@ factorisations, wall time and its split (assembly,
 factorisation, triangular solves, bordered event solves (part of the others), energy
 method), the headline number (P at 5 mm, or P* at gamma = 30 J/m^2, in N).
 
+With the `bench` extra installed (python -m pip install -e ".[bench]"), a last row times
+FElupe's frictionless loading curve of the same shell in the same run
+(`benchmarks/felupe_loading.py`: Quad9 64 x 8, 20 steps).
+
 Run: python benchmarks/run_all.py [--mesh default] [--settings all [dense [no-newton [superlu]]]]
 """
 import argparse
@@ -34,6 +38,17 @@ def loading_row(interface, mesh, settings):
     wall = time.perf_counter() - t0
     return row_of(d.ndof, timing_stats(path.timer, ()), wall, 0.0,
                 force_N(path.states[-1].P, C10_MPA, R_MM))
+
+
+def felupe_row():
+    """FElupe's frictionless loading curve (benchmarks/felupe_loading.py), or None if
+    FElupe is not installed."""
+    try:
+        from felupe_loading import felupe_loading
+        dofs, newton, wall, P_N = felupe_loading()
+    except ImportError:
+        return None
+    return {"dofs": dofs, "Newton": newton, "wall s": wall, "N": P_N[-1]}
 
 
 def pull_off_row(mesh, settings):
@@ -80,6 +95,12 @@ def main():
             row = bench(SETTINGS[key])
             rows.append({"benchmark": name, "speed-ups": key, **row})
             print(f"done: {name}, {key}: {row['wall s']:.1f} s", flush=True)
+    felupe = felupe_row()
+    if felupe is None:
+        print("FElupe is not installed (python -m pip install -e \".[bench]\"): its row is left out")
+    else:
+        rows.append({"benchmark": "loading frictionless, P(5 mm)",
+                     "speed-ups": "FElupe Quad9 64x8, 20 steps", **felupe})
     print(f"\nmesh {args.mesh}, one process; seconds of wall time; the split (assembly, "
           f"factorisation, solves, energy method) is inside the wall time, event solves "
           f"overlap the first three")

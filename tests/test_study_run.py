@@ -282,6 +282,41 @@ def test_rerun_of_the_same_cube_rewrites_nothing(local, tmp_path):
     assert not third.products.kept and first.products.figures[0].is_file()
 
 
+def test_rerun_of_the_same_inputs_builds_nothing(local, tmp_path, monkeypatch):
+    """A rerun whose study, settings, sources and stored path sets (catalogue entries and
+    their file digests) are those the cube on disk was built from keeps the cube without
+    decoding a path set or building it (study.dataset.inputs_sha256); a study that differs
+    (another gamma) is built and written."""
+    from shell_adhesion.catalogue import files
+    _, study, cat, ds = local
+    run = lambda s: execute(s, tmp_path / "results", scheduler=UNREACHABLE, catalogue=cat,
+                            progress=False)
+    first = run(study)
+    assert not first.products.kept
+    built = []
+    build = dataset.build
+
+    def counted(*args, **kwargs):
+        built.append(1)
+        return build(*args, **kwargs)
+
+    def refused(*args, **kwargs):
+        raise AssertionError("a stored path set was decoded")
+
+    read = files.read
+    monkeypatch.setattr(dataset, "build", counted)
+    monkeypatch.setattr(files, "read", refused)
+    again = run(study)
+    assert again.products.kept and again.exit_code == first.exit_code == 0 and not built
+    assert again.reused == first.reused and again.computed == []
+    same_results(again.dataset, ds)
+    monkeypatch.setattr(files, "read", read)
+    other = write(tmp_path / "tiny.yaml", TINY.replace("[20, 25, 30]", "[15, 20, 25, 30]"))
+    changed = run(other)
+    assert built and not changed.products.kept
+    assert 15 in changed.dataset["gamma_J_m2"].values
+
+
 def test_content_digest_sees_values_not_history(local):
     ds = local[3]
     other = ds.copy(deep=True)

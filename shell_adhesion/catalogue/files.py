@@ -41,6 +41,14 @@ def write(path, ds: xr.Dataset, fp: str, key_json: str) -> tuple:
     return write_atomic(ds, path, enc)
 
 
+def matches(path, sha256: str) -> bool:
+    """The bytes at `path` have digest `sha256` (read, not decoded)."""
+    try:
+        return hashlib.sha256(Path(path).read_bytes()).hexdigest() == sha256
+    except OSError:
+        return False
+
+
 def read(path, sha256: str, fp: str) -> xr.Dataset:
     """The Dataset stored at `path` (loaded; without the fingerprint and key attributes);
     CorruptFile unless its bytes match `sha256` and its fingerprint is `fp`."""

@@ -213,6 +213,16 @@ class Catalogue:
                     break
         return None
 
+    def locate(self, key: dict):
+        """The Entry `fetch` would serve for `key` if its file's bytes match the index
+        (hashed, not decoded), else None (then `fetch` sorts it out)."""
+        rows = self.candidates(key)
+        if not rows or not files.matches(self.dir / rows[0]["file"], rows[0]["sha256"]):
+            return None
+        row = rows[0]
+        return Entry(row["fingerprint"], row["delta_max_over_R"], row["gamma_max_hat"],
+                     self.dir / row["file"], row["sha256"])
+
     def store(self, key: dict, ds: xr.Dataset, summary: dict = None, timings: dict = None,
               study: str = "") -> Entry:
         """Store a computed Dataset under `key` (file, then index row) and return its entry;

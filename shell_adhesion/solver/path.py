@@ -274,6 +274,7 @@ class _Problem:
             kpos = c.free_pos[kdof]
         history = []
         lu, dr_dd = self.newest_of(c) if modified and chord_start else (None, None)
+        b = b_of = None           # the delta column solved with the factorisation b_of
         for _ in range(self.s.max_iter):
             with np.errstate(invalid="ignore", divide="ignore"):  # an inverted trial iterate
                 lin = self.linearise(x)
@@ -299,7 +300,8 @@ class _Problem:
             if target is None:
                 dx = a
             else:
-                b = self.solve(lu, -dr_dd)
+                if b_of is not lu:    # a chord step reuses it
+                    b, b_of = self.solve(lu, -dr_dd), lu
                 dd = (-(x[kdof] + self.Z[target]) - a[kpos]) / b[kpos]
                 dx = a + b * dd
                 delta += dd

@@ -46,6 +46,7 @@ CF-1.8 compliance checker without a high-priority failure.
 from dataclasses import asdict, fields
 import hashlib
 from datetime import datetime, timezone
+from pathlib import Path
 
 import numpy as np
 import xarray as xr
@@ -724,6 +725,24 @@ def content_sha256(ds: xr.Dataset) -> str:
         h.update(repr(values.tolist()).encode() if values.dtype.kind == "O"
                  else values.tobytes())
     h.update(repr(sorted((k, v) for k, v in ds.attrs.items() if k != "history")).encode())
+    return h.hexdigest()
+
+
+def inputs_sha256(plan: Plan, entries) -> str:
+    """Digest of all a cube is built from, known before building it: the validated study
+    and settings, the stored path sets serving its shells (catalogue Entries in plan
+    order: fingerprints and file digests), this package's sources and the versions of
+    the numerical libraries.  Equal digests build cubes of equal content_sha256."""
+    import scipy
+    root = Path(solver.__file__).parent.parent
+    h = hashlib.sha256()
+    h.update(repr((plan.study, plan.settings)).encode())
+    for e in entries:
+        h.update(f"{e.fingerprint} {e.sha256}\n".encode())
+    for p in sorted(root.rglob("*.py")):
+        h.update(str(p.relative_to(root)).encode() + b"\0" + p.read_bytes() + b"\0")
+    h.update(repr((solver.__version__, np.__version__, scipy.__version__,
+                   xr.__version__)).encode())
     return h.hexdigest()
 
 

@@ -58,23 +58,26 @@ def _file_sha256(path) -> str:
     return h.hexdigest()
 
 
-def record_products(results_nc, digest: str, products: Products) -> Path:
-    """Write the manifest: the digests of the cube's content (study.dataset.content_sha256)
-    and of its file, and the products written from it."""
-    text = json.dumps({"content_sha256": digest, "cube_sha256": _file_sha256(results_nc),
+def record_products(results_nc, digest: str, products: Products, inputs: str = None) -> Path:
+    """Write the manifest: the digests of the cube's content (study.dataset.content_sha256),
+    of its file and of what it was built from (study.dataset.inputs_sha256, if known), and
+    the products written from it."""
+    text = json.dumps({"content_sha256": digest, "inputs_sha256": inputs,
+                       "cube_sha256": _file_sha256(results_nc),
                        "tables": [str(p) for p in products.tables],
                        "figures": [str(p) for p in products.figures],
                        "skipped": products.skipped}, indent=1)
     return write_text_atomic(manifest_path(results_nc), text + "\n")
 
 
-def kept_products(results_nc, digest: str):
+def kept_products(results_nc, digest: str, field: str = "content_sha256"):
     """The products of an earlier run whose cube had content `digest` (Products with
     kept=True), if its manifest says so, the cube at `results_nc` is the file it was
-    written for and every listed file exists; else None."""
+    written for and every listed file exists; else None.  With field="inputs_sha256",
+    `digest` is that of the cube's inputs (study.dataset.inputs_sha256) instead."""
     try:
         record = json.loads(manifest_path(results_nc).read_text())
-        if record.get("content_sha256") != digest:
+        if digest is None or record.get(field) != digest:
             return None
         if record.get("cube_sha256") != _file_sha256(results_nc):
             return None

@@ -2,7 +2,7 @@
 
 Prints, per mesh: DOFs, states, Newton iterations, assembly vs linear-solve time
 (factorisations + solves), wall.
-Run: python benchmarks/loading.py [coarse default fine]
+Run: python benchmarks/loading.py [coarse default fine] [no_slip | frictionless]
 """
 import sys
 import time
@@ -10,12 +10,12 @@ import time
 from shell_adhesion.solver.case import solve_loading
 
 
-def main(meshes):
+def main(meshes, interface="no_slip"):
     print(f"{'mesh':8} {'dofs':>6} {'states':>6} {'newton':>6} {'assembly s':>10} "
           f"{'solve s':>8} {'wall s':>7} {'P(5mm) N':>9}")
     for mesh in meshes:
         t0 = time.perf_counter()
-        d, path = solve_loading(0.15, 1.0, "no_slip", mesh, 0.25)
+        d, path = solve_loading(0.15, 1.0, interface, mesh, 0.25)
         wall = time.perf_counter() - t0
         tm = path.timer
         print(f"{mesh:8} {d.ndof:6d} {len(path.states):6d} {tm.newton_iterations:6d} "
@@ -24,4 +24,6 @@ def main(meshes):
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:] or ["coarse", "default", "fine"])
+    interfaces = [a for a in sys.argv[1:] if a in ("no_slip", "frictionless")]
+    meshes = [a for a in sys.argv[1:] if a not in interfaces]
+    main(meshes or ["coarse", "default", "fine"], *interfaces[-1:])

@@ -143,3 +143,18 @@ def test_relaxations_start_from_the_loading_tangent(t, h, delta_max, gamma_max):
     assert n >= 4
     assert (on.stats["timing"]["factorisations"]
             <= off.stats["timing"]["factorisations"] - n)
+
+
+def test_relaxation_tasks_build_the_discretisation_once_per_process():
+    """relaxation_task (one path as an independent task, as a worker runs it) builds a
+    shell's discretisation once per process (case.task_discretisation), and its paths
+    equal those relaxed on the loading's own discretisation."""
+    from shell_adhesion.solver import case
+    d, loading = solve_loading(0.15, 1.0, "no_slip", "coarse", 0.02)
+    starts = case.relaxation_starts(loading, d.capmesh)[-2:]
+    case.task_discretisation.cache_clear()
+    paths = [case.relaxation_task(0.15, 1.0, "no_slip", "coarse", s, 0.005) for s in starts]
+    info = case.task_discretisation.cache_info()
+    assert (info.misses, info.hits) == (1, 1)
+    for path, s in zip(paths, starts):
+        np.testing.assert_array_equal(path.P, case.relax_from(d, "no_slip", s, 0.005).array("P"))

@@ -6,7 +6,7 @@ A `PathSet` holds only arrays, so it can be stored, shipped to other processes a
 post-processed for any C10, R and gamma (DESIGN.md section 3).
 """
 from dataclasses import dataclass, field, replace
-from functools import cached_property
+from functools import cached_property, lru_cache
 import math
 import time
 
@@ -442,11 +442,21 @@ def relaxation_task(t: float, h: float, interface: str, mesh: str, start: State,
                     gamma_max: float = GAMMA_MAX, settings: Settings = Settings(),
                     views: bool = False, material: Material = NEO_HOOKE,
                     cavity: Cavity = OPEN, lift: float = 0.0, progress=None) -> Relaxation:
-    """One relaxation path as an independent task (rebuilds the discretisation); with
-    `views`, it keeps the path's profiles and stress map; `progress` as in `relax_from`.
-    A closed `cavity` needs the loading's `lift` (`cavity_lift`)."""
-    d = discretise(cap_mesh(Cap(t, h), mesh_spec(mesh)), material=material)
-    if cavity.closed:
-        d = lifted(bind(d, cavity), lift)
+    """One relaxation path as an independent task (the discretisation is built once per
+    process: `task_discretisation`); with `views`, it keeps the path's profiles and stress
+    map; `progress` as in `relax_from`.  A closed `cavity` needs the loading's `lift`
+    (`cavity_lift`)."""
+    d = task_discretisation(t, h, mesh, material, cavity, lift)
     return Relaxation.of(relax_from(d, interface, start, gamma_max, settings, progress),
                          d if views else None)
+
+
+@lru_cache(maxsize=2)
+def task_discretisation(t: float, h: float, mesh: str, material: Material = NEO_HOOKE,
+                        cavity: Cavity = OPEN, lift: float = 0.0) -> Discretisation:
+    """The discretisation of a shell (lifted by `lift` / R if its cavity is closed), kept
+    for the process's next relaxation task of the same shell: a worker relaxes many paths
+    of one shell, and the build takes 60 ms (base shell) to 220 ms (solid cap) on the
+    default mesh.  Immutable, so sharing it changes no result."""
+    d = discretise(cap_mesh(Cap(t, h), mesh_spec(mesh)), material=material)
+    return lifted(bind(d, cavity), lift) if cavity.closed else d

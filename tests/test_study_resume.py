@@ -29,7 +29,7 @@ grid:
   C10_MPa: [0.2]
   t_over_R: [0.15, 1.0]
   h_over_R: [0.5]
-  gamma_J_m2: [25, 30]
+  gamma_J_m2: [10, 15]     # a* of t/R = 1 inside the coarse mesh's even zone (25, 30: refused)
 mesh: coarse
 delta_max_over_R: 0.1
 error_bars: false

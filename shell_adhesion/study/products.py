@@ -70,6 +70,15 @@ def record_products(results_nc, digest: str, products: Products, inputs: str = N
     return write_text_atomic(manifest_path(results_nc), text + "\n")
 
 
+def recorded_inputs(results_nc):
+    """The inputs digest (study.dataset.inputs_sha256) the manifest of `results_nc` records,
+    or None."""
+    try:
+        return json.loads(manifest_path(results_nc).read_text()).get("inputs_sha256")
+    except (OSError, ValueError, AttributeError):
+        return None
+
+
 def kept_products(results_nc, digest: str, field: str = "content_sha256"):
     """The products of an earlier run whose cube had content `digest` (Products with
     kept=True), if its manifest says so, the cube at `results_nc` is the file it was

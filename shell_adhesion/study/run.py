@@ -42,7 +42,7 @@ from . import dataset, interrupt
 from .config import StudyError, load_study, validate
 from .keys import relaxation_part, solver_source_sha256
 from .plan import Plan, Shell, make_plan, restrict, served_key
-from .products import Products, kept_products, record_products, write_products
+from .products import Products, kept_products, record_products, recorded_inputs, write_products
 from .progress import Progress
 
 DEFAULT_OUT = "results"
@@ -517,7 +517,9 @@ def _execute(plan, out_dir, output, catalogue, scheduler, client, show, workers,
         run_id = cat.start_run(study.name, study.source, study.sha256, output,
                                solver.__version__)
         # every set stored and the cube on disk built from these very inputs: keep it
-        entries = [cat.locate(s.key) for s in plan.all_shells]
+        # (the stored files are hashed only if the manifest records inputs at all)
+        entries = ([cat.locate(s.key) for s in plan.all_shells]
+                   if recorded_inputs(output) else [None])
         inputs = dataset.inputs_sha256(plan, entries) if all(entries) else None
         products = kept_products(output, inputs, field="inputs_sha256")
         if products is not None:
@@ -566,6 +568,9 @@ def _execute(plan, out_dir, output, catalogue, scheduler, client, show, workers,
         progress.start("cube")
         digest = dataset.content_sha256(ds)
         products = kept_products(output, digest)    # the same cube: nothing to rewrite
+        if inputs is None:      # recorded, so that a rerun builds nothing
+            entries = [cat.locate(s.key) for s in plan.all_shells]
+            inputs = dataset.inputs_sha256(plan, entries) if all(entries) else None
         if products is None:
             dataset.write(ds, output)
             try:
@@ -573,8 +578,8 @@ def _execute(plan, out_dir, output, catalogue, scheduler, client, show, workers,
                 record_products(output, digest, products, inputs)
             except Exception as e:      # the cube is written; a drawing bug must not lose it
                 products = Products(skipped={"tables and figures": _reason("products", e)})
-        elif inputs is not None:
-            record_products(output, digest, products, inputs)   # next time: not even built
+        elif inputs != recorded_inputs(output):
+            record_products(output, digest, products, inputs)
         progress.update("cube", 1, note=str(output))
         counts = dataset.summary_counts(ds)
         bad = counts["solver failed"] + counts["out of range"]

@@ -79,14 +79,14 @@ def recorded_inputs(results_nc):
         return None
 
 
-def kept_products(results_nc, digest: str, field: str = "content_sha256"):
+def kept_products(results_nc, digest: str, key: str = "content_sha256"):
     """The products of an earlier run whose cube had content `digest` (Products with
     kept=True), if its manifest says so, the cube at `results_nc` is the file it was
-    written for and every listed file exists; else None.  With field="inputs_sha256",
+    written for and every listed file exists; else None.  With key="inputs_sha256",
     `digest` is that of the cube's inputs (study.dataset.inputs_sha256) instead."""
     try:
         record = json.loads(manifest_path(results_nc).read_text())
-        if digest is None or record.get(field) != digest:
+        if digest is None or record.get(key) != digest:
             return None
         if record.get("cube_sha256") != _file_sha256(results_nc):
             return None

@@ -518,10 +518,8 @@ def _execute(plan, out_dir, output, catalogue, scheduler, client, show, workers,
                                solver.__version__)
         # every set stored and the cube on disk built from these very inputs: keep it
         # (the stored files are hashed only if the manifest records inputs at all)
-        entries = ([cat.locate(s.key) for s in plan.all_shells]
-                   if recorded_inputs(output) else [None])
-        inputs = dataset.inputs_sha256(plan, entries) if all(entries) else None
-        products = kept_products(output, inputs, field="inputs_sha256")
+        inputs = _inputs(plan, cat) if recorded_inputs(output) else None
+        products = kept_products(output, inputs, key="inputs_sha256")
         if products is not None:
             return _kept_run(plan, output, products, cat, run_id, t0)
         served, reused, missing = {}, [], []
@@ -569,8 +567,7 @@ def _execute(plan, out_dir, output, catalogue, scheduler, client, show, workers,
         digest = dataset.content_sha256(ds)
         products = kept_products(output, digest)    # the same cube: nothing to rewrite
         if inputs is None:      # recorded, so that a rerun builds nothing
-            entries = [cat.locate(s.key) for s in plan.all_shells]
-            inputs = dataset.inputs_sha256(plan, entries) if all(entries) else None
+            inputs = _inputs(plan, cat)
         if products is None:
             dataset.write(ds, output)
             try:
@@ -601,6 +598,13 @@ def _execute(plan, out_dir, output, catalogue, scheduler, client, show, workers,
                             "resume") from None
     finally:
         cat.close()
+
+
+def _inputs(plan, cat):
+    """study.dataset.inputs_sha256 of the plan with the catalogue's stored sets, or None
+    if one is not stored (or its file does not match the index)."""
+    entries = [cat.locate(s.key) for s in plan.all_shells]
+    return dataset.inputs_sha256(plan, entries) if all(entries) else None
 
 
 def _kept_run(plan, output, products, cat, run_id, t0) -> Outcome:

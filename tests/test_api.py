@@ -112,6 +112,25 @@ def test_cli_prints_exactly_to_json(solved, monkeypatch, capsys):
     assert capsys.readouterr().out == solved.to_json() + "\n"
 
 
+def test_cli_text_gives_every_pull_off_number_its_error_bar(solved, monkeypatch, capsys):
+    """The text output of `case` carries the error bar of every pull-off number, a0 too
+    (it printed a0 bare while the JSON had its error)."""
+    monkeypatch.setattr(case_module, "solve_case", lambda *a, **k: solved)
+    code = main(["case", "--R", "20", "--t", "3", "--h", "20", "--C10", "0.3", "--gamma", "30",
+                 "--gamma", "20", "--delta-max", "2", "--mesh", "coarse"])
+    lines = [s for s in capsys.readouterr().out.splitlines() if s.startswith("gamma = ")]
+    assert code == 0 and len(lines) == len(GAMMAS)
+    for line, po in zip(lines, solved.to_dict()["pull_off"]):
+        # P*, delta*, a*, P, delta, a, eta, and a0 where it is defined (delta_max = 2 mm
+        # ends the 30 J/m^2 curve before P = 0)
+        if po["a0_mm"] is None:
+            assert "a0 = undefined" in line and line.count(" +- ") == 7
+        else:
+            assert po["a0_mm_error"] > 0 and line.count(" +- ") == 8
+            assert f"a0 = {po['a0_mm']:.4f} +- {po['a0_mm_error']:.2g} mm" in line
+    assert any(po["a0_mm"] is not None for po in solved.to_dict()["pull_off"])
+
+
 FOREIGN = """\
 import sys
 import catalogue

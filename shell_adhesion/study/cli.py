@@ -97,8 +97,11 @@ def _pm(group, name, unit=" mm"):
             else f"{group[name]:.4f} +- {err:.2g}{unit}")
 
 
-def _fmt(v, unit=" mm"):
-    return "undefined (the equilibrium curve ends before P = 0)" if v is None else f"{v:.4f}{unit}"
+def _a0(po):
+    """a0 with its error bar, or why it is undefined."""
+    if po["a0_mm"] is None:
+        return "undefined (the equilibrium curve ends before P = 0)"
+    return _pm(po, "a0_mm")
 
 
 def _print_case(out):
@@ -126,7 +129,7 @@ def _print_case(out):
         print(f"gamma = {po['gamma_J_m2']:g} J/m^2: fixed load P* = {_pm(fl, 'P_N', ' N')}, "
               f"delta* = {_pm(fl, 'delta_mm')}, a* = {_pm(fl, 'a_mm')}; fixed grips "
               f"P = {_pm(fg, 'P_N', ' N')}, delta = {_pm(fg, 'delta_mm')}, "
-              f"a = {_pm(fg, 'a_mm')}; a0 = {_fmt(po['a0_mm'])}; eta = {po['eta']:.3g}"
+              f"a = {_pm(fg, 'a_mm')}; a0 = {_a0(po)}; eta = {po['eta']:.3g}"
               + (f" +- {po['eta_error']:.2g}" if po.get("eta_error") is not None else ""))
     p = out["provenance"]
     print(f"{p['dofs']} dofs, {p['newton_iterations']} Newton iterations, {p['wall_s']:.1f} s")

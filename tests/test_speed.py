@@ -158,3 +158,40 @@ def test_relaxation_tasks_build_the_discretisation_once_per_process():
     assert (info.misses, info.hits) == (1, 1)
     for path, s in zip(paths, starts):
         np.testing.assert_array_equal(path.P, case.relax_from(d, "no_slip", s, 0.005).array("P"))
+
+
+@pytest.mark.parametrize("stage, after", [("loading", 10), ("relaxation", 2)])
+def test_a_step_that_fails_with_modified_newton_is_retried_with_full_newton(monkeypatch,
+                                                                            stage, after):
+    """Modified Newton (chord steps, chord starts) is an economy with full Newton as its
+    fallback: after a step fails, its retries use full Newton, and the step after the
+    first success uses modified Newton again.  (A coarse loading to 0.5 R, beyond the
+    domain, stalled at 0.482 R on one machine with chord steps in every retry; full Newton
+    goes through.)  Here the first modified Newton solve after `after` calls of the stage is
+    made to fail."""
+    from shell_adhesion.solver import path as path_module
+    from shell_adhesion.solver.case import relax_from, relaxation_starts
+    d, loading = solve_loading(0.15, 1.0, "no_slip", "coarse", 0.02)
+    start = relaxation_starts(loading, d.capmesh)[-1]
+    calls, failed = [], []
+    newton = path_module._Problem.newton
+
+    def flaky(self, c, x, delta, target=None, modified=False, chord_start=False):
+        # every modified solve fails from call `after` until a full Newton solve is asked
+        # for (a relaxation step tries its Hermite start, then its tangent start)
+        calls.append(modified)
+        if len(calls) > after and modified and False not in calls[after:]:
+            failed.append(len(calls) - 1)
+            raise path_module.ConvergenceError("made to fail")
+        return newton(self, c, x, delta, target, modified, chord_start)
+    monkeypatch.setattr(path_module._Problem, "newton", flaky)
+    if stage == "loading":
+        path = solve_loading(0.15, 1.0, "no_slip", "coarse", 0.02)[1]
+        assert path.states[-1].delta == pytest.approx(0.02)
+    else:
+        path = relax_from(d, "no_slip", start, 0.005)
+        assert path.ended_by == "stop criterion"
+    k = failed[-1]
+    assert calls[:k + 1] == [True] * (k + 1) and len(failed) == (1 if stage == "loading" else 2)
+    assert calls[k + 1] is False            # the retry: full Newton
+    assert True in calls[k + 2:]            # later steps: modified again

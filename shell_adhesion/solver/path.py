@@ -83,7 +83,8 @@ class Settings:
     #                               that cut the residual by CHORD_GAIN keeps its
     #                               factorisation (a chord step, no tangent assembled), and
     #                               a no_slip loading step starts with a chord step from
-    #                               the newest factorisation; False: every iteration
+    #                               the newest factorisation (the retries of a step that
+    #                               failed use full Newton); False: every iteration
     #                               factorises
     # relaxation sampling (solver.case.relax_from): steps down to the stop criterion, and
     # the largest step.  The energy method's quintic Hermite splines (U, P, dP/ddelta) make
@@ -390,6 +391,7 @@ def load(d: Discretisation, interface: str, delta_max: float,
     step_cap = settings.step_max
     reuse = None
     events = 0
+    modified = True     # off for the retries of a failed step: full Newton is the fallback
     while delta < delta_max * (1 - 1e-12):
         if len(states) >= settings.max_states or events >= max_events:
             raise ConvergenceError(
@@ -409,9 +411,10 @@ def load(d: Discretisation, interface: str, delta_max: float,
         step = to_touch[k] if target is not None else step
         try:
             xn, dn, Kn, rn, hist, target = _advance(pb, c, x, delta, dx, free_nodes, target,
-                                                    step, delta_max)
+                                                    step, delta_max, modified)
         except ConvergenceError as err:
             _check_lock_up(d, x, delta)
+            modified = False
             # the cap never grows on failure, so repeated failures end at step_min
             step_cap = min(step_cap, step) / 2
             if step_cap < settings.step_min:
@@ -422,6 +425,7 @@ def load(d: Discretisation, interface: str, delta_max: float,
                     raise stall from None
                 return LoadingPath(interface, tuple(states), timer, str(stall))
             continue
+        modified = True
         step_cap = min(settings.step_max, 2 * step_cap)
         x, delta, K, r = xn, dn, Kn, rn
         _, dP_left = pb.tangent_direction(K, c, pb.last_lu)
@@ -484,9 +488,10 @@ def _has_event(states) -> bool:
     return any(s.joined > 0 for s in states)
 
 
-def _advance(pb, c, x, delta, dx, free_nodes, target, step, delta_max):
+def _advance(pb, c, x, delta, dx, free_nodes, target, step, delta_max, modified=True):
     """One loading step from the converged (x, delta): to delta + step, or to the event of
     `target` predicted near there.  Returns (x, delta, K, r, history, target).
+    `modified`: settings.modified_newton applies (else full Newton, no chord start).
 
     If another free node ends up below the plane, its event lies inside the step just
     taken: it is re-located from a secant guess between the two converged states, never
@@ -498,17 +503,18 @@ def _advance(pb, c, x, delta, dx, free_nodes, target, step, delta_max):
     # a node just joined is released hangs on the sign of a reaction near zero, which a
     # state converged by chord steps (different within the tolerance) can flip, and then
     # the node joins and leaves again (seen in the Hertz test at delta ~ 1e-6 R)
-    chord_start = pb.interface == "no_slip"
+    modified = modified and s.modified_newton
+    chord_start = modified and pb.interface == "no_slip"
     g0 = gaps(d, x, free_nodes)
     guess = x + dx * step
     for _ in range(s.max_relocations):
-        xn, dn, Kn, rn, hist = pb.newton(c, guess, delta + step, target, s.modified_newton,
+        xn, dn, Kn, rn, hist = pb.newton(c, guess, delta + step, target, modified,
                                          chord_start)
         if target is not None and dn > delta_max:
             # the event lies beyond the end of the path: stop at delta_max instead
             target, step = None, delta_max - delta
             xn, dn, Kn, rn, hist = pb.newton(c, x + dx * step, delta_max, None,
-                                             s.modified_newton, chord_start)
+                                             modified, chord_start)
         if dn < delta * (1 - 1e-12):
             raise ConvergenceError(f"the event of outer node {target} was located behind the "
                                    f"last state (delta = {dn:.6g} < {delta:.6g} R)")
@@ -575,16 +581,19 @@ def relax(d: Discretisation, interface: str, start: State, stop, step: float,
     inversion_delta = np.nan
     ended_by = f"point limit: {settings.max_points} states"
     last = None               # the state before (delta, x, dx/ddelta), for the predictor
+    modified = True           # off for the retries of a failed step: full Newton is the fallback
     while len(states) < settings.max_points:
         try:
-            xn, dn, Kn, rn, hist = _relaxation_step(pb, c, last, (delta, x, dx), h)
+            xn, dn, Kn, rn, hist = _relaxation_step(pb, c, last, (delta, x, dx), h, modified)
         except ConvergenceError:
+            modified = False
             h /= 2
             if h < step * 1e-3:
                 ended_by = f"no convergence below delta = {delta:.6g} R"
                 break
             continue
         last = (delta, x, dx)
+        modified = True
         x, delta, K, r = xn, dn, Kn, rn
         dx, dP = pb.tangent_direction(K, c, pb.last_lu)
         pulled = centre_pulled(d, r, held)
@@ -603,20 +612,21 @@ def relax(d: Discretisation, interface: str, start: State, stop, step: float,
                           centre_lifts, timer, inversion_delta)
 
 
-def _relaxation_step(pb, c, last, now, h):
+def _relaxation_step(pb, c, last, now, h, modified=True):
     """Newton from `now` = (delta, x, dx/ddelta) to delta - h (pb.newton's result).
 
     The start is the cubic (Hermite) extrapolation through `last` and `now` if
     settings.hermite_predictor and there is a `last`, else the tangent; a failed cubic start
-    is retried from the tangent, so the predictor never makes a step fail."""
+    is retried from the tangent, so the predictor never makes a step fail.  `modified`:
+    settings.modified_newton applies (else full Newton)."""
     delta, x, dx = now
+    modified = modified and pb.s.modified_newton
     if pb.s.hermite_predictor and last is not None:
         try:
-            return pb.newton(c, _hermite(last, now, delta - h), delta - h, None,
-                             pb.s.modified_newton)
+            return pb.newton(c, _hermite(last, now, delta - h), delta - h, None, modified)
         except ConvergenceError:
             pass
-    return pb.newton(c, x - dx * h, delta - h, None, pb.s.modified_newton)
+    return pb.newton(c, x - dx * h, delta - h, None, modified)
 
 
 def _hermite(a, b, t):

@@ -39,13 +39,14 @@ def pull_offs(ps, gammas) -> dict:
     return out
 
 
-def thinned_change(ps, gammas, full) -> float:
-    """Largest relative change of a pull-off number when every other path is dropped."""
+def thinned_change(ps, full) -> float:
+    """Largest relative change of a pull-off number (`full`: gamma -> PullOff of all the
+    paths) when every other path is dropped."""
     paths = sorted(ps.relaxations, key=lambda r: r.a)
     worst = 0.0
     for parity in (0, 1):
         kept = tuple(r for i, r in enumerate(paths) if i % 2 == parity or i == len(paths) - 1)
-        thin = pull_offs(replace(ps, relaxations=kept), full)
+        thin = pull_offs(replace(ps, relaxations=kept), list(full))
         for g, po in thin.items():
             for name in NUMBERS:
                 a, b = getattr(full[g], name), getattr(po, name)
@@ -78,7 +79,7 @@ def main(folder="catalogue-data"):
             total["iterations"] += int(its.sum())
             total["skippable_iterations"] += int(its[keep:].sum())
             print(f"t/R {ps.t:<5g} h/R {ps.h:<5g} {ps.mesh:8s} paths {len(a):3d}  "
-                  f"thinned: pull-off moves {100 * thinned_change(ps, gammas, full):.3f} %  "
+                  f"thinned: pull-off moves {100 * thinned_change(ps, full):.3f} %  "
                   f"beyond a0 = {a0:.3f} R at gamma/(C10 R) = {max(full):.4g}: {skip} paths, "
                   f"{100 * its[keep:].sum() / its.sum():.1f} % of the Newton iterations")
     share = total["skippable_iterations"] / max(total["iterations"], 1)

@@ -196,8 +196,7 @@ class Catalogue:
             for _ in range(3):      # the row may be replaced while we read
                 try:
                     ds = files.read(self.dir / row["file"], row["sha256"], row["fingerprint"])
-                    return Entry(row["fingerprint"], row["delta_max_over_R"],
-                                 row["gamma_max_hat"], self.dir / row["file"], row["sha256"]), ds
+                    return self._entry(row), ds
                 except files.CorruptFile as e:
                     fresh = self.db.execute(
                         "SELECT * FROM pathsets WHERE fingerprint = ?", (row["fingerprint"],)
@@ -219,7 +218,10 @@ class Catalogue:
         rows = self.candidates(key)
         if not rows or not files.matches(self.dir / rows[0]["file"], rows[0]["sha256"]):
             return None
-        row = rows[0]
+        return self._entry(rows[0])
+
+    def _entry(self, row) -> Entry:
+        """The Entry of an index row."""
         return Entry(row["fingerprint"], row["delta_max_over_R"], row["gamma_max_hat"],
                      self.dir / row["file"], row["sha256"])
 

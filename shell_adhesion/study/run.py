@@ -579,16 +579,12 @@ def _execute(plan, out_dir, output, catalogue, scheduler, client, show, workers,
             record_products(output, digest, products, inputs)
         progress.update("cube", 1, note=str(output))
         counts = dataset.summary_counts(ds)
-        bad = counts["solver failed"] + counts["out of range"]
-        code = 1 if tally.failed or bad else 0
+        code = 1 if tally.failed else exit_code(ds)
         wall = time.perf_counter() - t0
         cat.finish_run(run_id, code, len(tally.computed), len(reused), len(tally.failed), wall)
-        import xarray as xr
-        with xr.open_dataset(output) as written:
-            written = written.load()
         return Outcome(code, output, plan, list(tally.computed), reused, tally.failed, counts,
                        wall, cat.dir, list(cat.discarded), products,
-                       tally.relaxations_computed, tally.relaxations_reused, written)
+                       tally.relaxations_computed, tally.relaxations_reused, _written(output))
     except KeyboardInterrupt:
         _finish_broken(cat, run_id, 130, tally, t0)
         raise Interrupted(f"interrupted: {_kept(tally, cat)}; run again to resume") from None
@@ -610,16 +606,21 @@ def _inputs(plan, cat):
 def _kept_run(plan, output, products, cat, run_id, t0) -> Outcome:
     """The Outcome of a run whose every path set is stored and whose cube on disk was
     built from the same inputs (study.dataset.inputs_sha256): nothing is built or written."""
-    import xarray as xr
-    with xr.open_dataset(output) as written:
-        written = written.load()
+    written = _written(output)
     counts = dataset.summary_counts(written)
-    code = 1 if counts["solver failed"] + counts["out of range"] else 0
+    code = exit_code(written)
     reused = [s.fingerprint for s in plan.all_shells]
     wall = time.perf_counter() - t0
     cat.finish_run(run_id, code, 0, len(reused), 0, wall)
     return Outcome(code, output, plan, [], reused, {}, counts, wall, cat.dir,
                    list(cat.discarded), products, dataset=written)
+
+
+def _written(output):
+    """The cube as written at `output` (loaded, the file closed)."""
+    import xarray as xr
+    with xr.open_dataset(output) as written:
+        return written.load()
 
 
 def _finish_broken(cat, run_id, code, tally, t0):

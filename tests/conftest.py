@@ -19,6 +19,17 @@ R_MM, C10_MPA, GAMMA = 20.0, 0.3, 30.0
 GAMMA_HAT = GAMMA * 1e-3 / (C10_MPA * R_MM)
 
 
+def energy_roundoff(d, *energies) -> float:
+    """Absolute floor of an energy check on the discretisation d (units of C10 R^3): the
+    round-off of integrating W = C10 (I1bar - 3) with I1bar near 3 over the body (3 times
+    its volume), and of the energies compared, 16 units of round-off each.  A relative
+    check of an energy near 0 (the first apex state: 5e-13) holds to this floor instead."""
+    import numpy as np
+    scale = 3.0 * float(d.w.sum()) + max((float(np.max(np.abs(e))) for e in energies),
+                                         default=0.0)
+    return 16 * np.finfo(float).eps * scale
+
+
 @functools.lru_cache(maxsize=None)
 def _pool():
     # relaxation paths are independent tasks; spawn, so no thread state is forked

@@ -9,6 +9,8 @@ import numpy as np
 
 from shell_adhesion.solver.case import relaxation_starts
 
+from conftest import energy_roundoff
+
 
 def hermite_integral(x0, x1, f0, f1, df0, df1):
     h = x1 - x0
@@ -29,11 +31,12 @@ def test_eq1_equals_strain_energy(base_coarse):
     states = loading.states
     work = loading_work(states)
     U = np.array([s.U for s in states])
-    assert np.all(np.abs(work[1:] - U[1:]) <= 1e-4 * U[1:])
+    floor = energy_roundoff(d, U)
+    assert np.all(np.abs(work[1:] - U[1:]) <= 1e-4 * U[1:] + floor)
     by_state = {id(s): w for s, w in zip(states, work)}
     starts = relaxation_starts(loading, d.capmesh)
     assert len(starts) == len(ps.relaxations) >= 10
-    worst = 0.0
+    worst = 0.0         # the largest error beyond 1e-4 relative plus the floor (<= 0: held)
     for start, rel in zip(starts, ps.relaxations):
         assert rel.a == start.a
         recovered = np.concatenate([[0.0], np.cumsum(
@@ -41,9 +44,9 @@ def test_eq1_equals_strain_energy(base_coarse):
                               rel.dP_ddelta[j + 1], rel.dP_ddelta[j])
              for j in range(len(rel.delta) - 1)])])
         U_eq1 = by_state[id(start)] - recovered
-        err = np.abs(U_eq1 - rel.U) / np.abs(rel.U)
-        worst = max(worst, err.max())
-    assert worst <= 1e-4, worst
+        excess = np.abs(U_eq1 - rel.U) - (1e-4 * np.abs(rel.U) + floor)
+        worst = max(worst, excess.max())
+    assert worst <= 0.0, worst
 
 
 def test_energy_is_path_independent(base_coarse):

@@ -286,3 +286,27 @@ def test_ctrl_c_ends_in_one_line(tmp_path):
     assert lines[0].startswith("shell-adhesion: interrupted: ")
     assert "relaxation paths finished and are kept" in lines[0] and "run again" in lines[0]
     assert not (out / "faults.nc").exists() and parts(cat) >= 1
+
+
+def test_taken_dashboard_port_prints_nothing(capfd):
+    """The local cluster never asks for dask's default port 8787: with it taken (by this
+    test, or by whatever else holds it), starting the cluster warns nothing."""
+    import socket
+    import warnings
+    from shell_adhesion.study.run import _local_cluster
+    holder = socket.socket()
+    try:
+        holder.bind(("", 8787))
+        holder.listen()
+    except OSError:
+        pass                    # taken already: the condition this test needs
+    try:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            with _local_cluster(1) as client:
+                assert client.submit(sum, [1, 2]).result(timeout=60) == 3
+    finally:
+        holder.close()
+    assert not [w for w in caught if "already in use" in str(w.message)]
+    out, err = capfd.readouterr()
+    assert "already in use" not in out + err

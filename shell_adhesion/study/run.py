@@ -215,7 +215,9 @@ def _local_cluster(n_workers=None):
         with dask.config.set({"distributed.nanny.pre-spawn-environ": environ}):
             cluster = LocalCluster(n_workers=n_workers or _cpu_count(), threads_per_worker=1,
                                    processes=True,
-                                   dashboard_address=":0" if _has_bokeh() else None,
+                                   # a free port: dask's HTTP server starts even
+                                   # without bokeh, and on 8787 (taken) it warns
+                                   dashboard_address=":0",
                                    silence_logs=logging.CRITICAL)
     finally:
         if main:

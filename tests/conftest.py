@@ -83,6 +83,8 @@ FE_ENTRY_POINTS = {
     "shell_adhesion.solver.forms": ("tangent",),
     "shell_adhesion.solver.case": ("load", "relax", "solve_paths", "solve_loading", "relaxation_task"),
     "shell_adhesion.solver": ("solve_paths", "solve_loading", "relaxation_task"),
+    "shell_adhesion.solver.request": ("solve_paths", "solve_request"),
+    "shell_adhesion.study.case": ("solve_request",),
     "shell_adhesion.study.run": ("solve_loading", "relaxation_task"),
 }
 

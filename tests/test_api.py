@@ -49,7 +49,7 @@ def test_exports():
 def test_bad_input_raises_before_any_computation(monkeypatch, change, message):
     def no_fe(*args, **kwargs):
         raise AssertionError("the FE solver ran on bad input")
-    monkeypatch.setattr(case_module, "solve_paths", no_fe)
+    monkeypatch.setattr(case_module, "solve_request", no_fe)
     with pytest.raises(InputError) as e:
         sa.solve_case(**dict(BASE, **change))
     assert isinstance(e.value, ValueError)
@@ -199,26 +199,31 @@ def test_mooney_rivlin_case_carries_its_material():
 def test_bad_material_raises_before_any_computation(monkeypatch, change, message):
     def no_fe(*args, **kwargs):
         raise AssertionError("the FE solver ran on bad input")
-    monkeypatch.setattr(case_module, "solve_paths", no_fe)
+    monkeypatch.setattr(case_module, "solve_request", no_fe)
     with pytest.raises(InputError) as e:
         sa.solve_case(**dict(BASE, **change))
     assert str(e.value).startswith(message) and "\n" not in str(e.value)
 
 
 def test_error_bars_beside_every_number(solved):
-    """Issue 10 item 7: every headline number and the loading P carry the error estimate of
-    solver.error_bars from the same shell on the next coarser mesh."""
-    from shell_adhesion.solver.error_bars import error_bar
+    """Issue 10 item 7, issue 21 item 7: every headline number and the loading P carry the
+    error estimate of solver.error_bars from the same shell on the next two coarser meshes
+    (the observed order where the three converge, beside it as "<name>_order")."""
+    from shell_adhesion.solver.error_bars import error_bar, observed_order
     out = solved.to_dict()
-    assert solved.coarser.mesh == "coarser"
-    assert out["provenance"]["error_bars"]["coarser_mesh"] == "coarser"
-    for po, cpo in zip(out["pull_off"], solved.coarser_pull_off):
+    assert (solved.coarser.mesh, solved.coarsest.mesh) == ("coarser", "coarsest")
+    assert out["provenance"]["error_bars"]["coarser_meshes"] == ["coarser", "coarsest"]
+    for po, (_, _, c1), c2, c3 in zip(out["pull_off"], solved.adhesion,
+                                      solved.coarser_pull_off, solved.coarsest_pull_off):
         for group, name, key in (("fixed_load", "P_N", "P_star"), ("fixed_grips", "delta_mm",
                                                                      "delta_dagger")):
-            value, err = po[group][name], po[group][f"{name}_error"]
-            coarser = (force_N(getattr(cpo, key), 0.3, 20) if name == "P_N"
-                       else length_mm(getattr(cpo, key), 20))
-            assert err == pytest.approx(float(error_bar(value, coarser)), rel=1e-6)
+            err = po[group][f"{name}_error"]
+            dim = ((lambda x: force_N(x, 0.3, 20)) if name == "P_N"
+                   else (lambda x: length_mm(x, 20)))
+            value, coarser, coarsest = (dim(getattr(c, key)) for c in (c1, c2, c3))
+            assert err == pytest.approx(float(error_bar(value, coarser, coarsest)), rel=1e-6)
+            order = observed_order(value, coarser, coarsest)
+            assert (po[group][f"{name}_order"] is None) == bool(np.isnan(order))
             assert 0 < err < 0.1 * abs(value)      # coarse mesh: a few per cent
         assert po["eta_error"] > 0 and "a0_mm_error" in po
     errors = out["loading"]["P_N_error"]

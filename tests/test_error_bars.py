@@ -10,7 +10,8 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from shell_adhesion.solver.error_bars import ORDER, SAFETY, curve_error, error_bar
+from shell_adhesion.solver.error_bars import (ORDER, SAFETY, SAFETY_OBSERVED, curve_error,
+                                               error_bar, observed_order)
 from shell_adhesion.study import analysis, figures, tables
 
 matplotlib.use("Agg")
@@ -19,6 +20,15 @@ matplotlib.use("Agg")
 def test_rule():
     assert error_bar(-1.0, -1.01) == pytest.approx(SAFETY * 0.01 / (2 ** ORDER - 1))
     assert np.isnan(error_bar(1.0, np.nan))
+    # three meshes converging at order 2 (differences 0.04 then 0.01): Richardson
+    assert observed_order(1.0, 1.01, 1.05) == pytest.approx(2.0)
+    assert error_bar(1.0, 1.01, 1.05) == pytest.approx(SAFETY_OBSERVED * 0.01 / 3)
+    # not monotone (the differences change sign), or an order beyond OBSERVED_ORDERS:
+    # back to order 1 with factor 3
+    for coarsest in (0.99, 1.0101, 1.01 + 0.01 * 2 ** 5):
+        assert np.isnan(observed_order(1.0, 1.01, coarsest))
+        assert error_bar(1.0, 1.01, coarsest) == pytest.approx(SAFETY * 0.01)
+    assert error_bar(1.0, 1.01, np.nan) == pytest.approx(SAFETY * 0.01)  # two suffice
     e = curve_error([0.0, 0.5, 2.0], [0.0, 1.0, 4.0], [0.0, 1.0], [0.0, 2.2])
     assert e[0] == 0 and e[1] == pytest.approx(error_bar(1.0, 1.1)) and np.isnan(e[2])
 
@@ -77,19 +87,21 @@ delta_max_over_R: 0.05
 
 
 def test_study_error_bars_through_the_catalogue(tmp_path):
-    """The coarser mesh's set is a catalogue entry like any other: a rerun solves nothing."""
+    """The two coarser meshes' sets are catalogue entries like any other: a rerun solves
+    nothing; the cube says where the observed order was used (`P_star_order`)."""
     from shell_adhesion.study.run import execute
     (tmp_path / "eb.yaml").write_text(STUDY)
     out = execute(tmp_path / "eb.yaml", tmp_path / "r", catalogue=tmp_path / "cat",
                   progress=False, workers=1)
-    assert out.exit_code == 0 and len(out.computed) == 2
+    assert out.exit_code == 0 and len(out.computed) == 3
+    assert "P_star_order" in out.dataset and "a0_order" in out.dataset
     ds = out.dataset
     P, e = float(ds["P_star"].squeeze()), float(ds["P_star_error"].squeeze())
     assert 0 < e < 0.05 * abs(P)
     assert np.isfinite(ds["loading_P_error"].values).any()
     again = execute(tmp_path / "eb.yaml", tmp_path / "r2", catalogue=tmp_path / "cat",
                     progress=False, workers=1)
-    assert again.computed == [] and len(again.reused) == 2
+    assert again.computed == [] and len(again.reused) == 3
     assert float(again.dataset["P_star_error"].squeeze()) == e
 
 

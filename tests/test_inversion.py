@@ -2,7 +2,8 @@
 (the paper's "buckling").  Found case: t/R = 0.02, h/R = 1, coarse mesh, no-slip: loaded to
 delta = 0.05 R, the relaxation paths held at a/R = 0.046 to 0.092 have their centre pulled
 off the plane at delta/R = -0.09 to -0.22.  They are reported (where, and on which paths)
-and the equilibrium points that bridge them are flagged."""
+and serve the energy method up to their inversion (issue 21); equilibrium points that
+bridge a path left out entirely are flagged."""
 import numpy as np
 import pytest
 
@@ -28,15 +29,37 @@ def test_thin_shell_inversion_is_located(thin):
     assert st["inversion_a_loading"] is None
 
 
-def test_bridged_equilibrium_points_are_flagged(thin):
+def test_inverted_paths_serve_up_to_their_inversion(thin):
+    """Issue 21, item 5: a path whose centre lifts serves the energy method with its states
+    before the inversion (a contact disc on the plane); the equilibrium points come from
+    those states only."""
+    ps, _, _ = thin
+    flipped = [r for r in ps.relaxations if r.centre_lifts]
+    for r in flipped:
+        up = r.upright()
+        assert np.all(up.delta > r.inversion_delta) and len(up.delta) < len(r.delta)
+        assert r.usable == (len(up.delta) >= 2)
+    used = {r.a: r for r in ps.usable()}
+    assert any(r.usable for r in flipped)
+    for r in flipped:
+        if r.usable:
+            assert used[r.a].delta.min() > r.inversion_delta
+
+
+def test_points_bridging_unusable_paths_are_flagged(thin):
+    """A path that inverted before two states is left out; the points that bridge it (and
+    only those) are flagged."""
     ps, _, _ = thin
     eq = equilibrium(ps.surface(), 0.002)
+    gone = [r.a for r in ps.relaxations if r.centre_lifts and not r.usable]
     flags = ps.inverted(eq.a)
-    a_flip = [r.a for r in ps.relaxations if r.centre_lifts]
     usable = np.array([r.a for r in ps.usable()])
-    lo, hi = usable[usable < min(a_flip)].max(), usable[usable > max(a_flip)].min()
-    assert flags.any() and not flags.all()
-    assert np.array_equal(flags, (eq.a > lo) & (eq.a < hi))
+    expect = np.zeros(len(eq.a), dtype=bool)
+    for a in gone:
+        lo = usable[usable < a].max(initial=-np.inf)
+        hi = usable[usable > a].min(initial=np.inf)
+        expect |= (eq.a > lo) & (eq.a < hi)
+    assert np.array_equal(flags, expect)
 
 
 def test_base_shell_does_not_invert(base_coarse):

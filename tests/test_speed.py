@@ -11,7 +11,9 @@ import pytest
 import shell_adhesion as sa
 from shell_adhesion.solver import linear
 from shell_adhesion.solver.case import solve_loading, solve_paths
+from shell_adhesion.solver.geometry import Cap
 from shell_adhesion.solver.path import Settings
+from shell_adhesion.solver.request import Request, initial_fit
 
 FAST, SLOW = Settings(), Settings(fast_solver=False)
 
@@ -39,7 +41,8 @@ def same_paths(ps, ref):
 def test_fast_solver_changes_no_result(t, h, delta_max, gamma_max):
     runs = {}
     for name, settings in (("fast", FAST), ("slow", SLOW)):
-        runs[name] = solve_paths(t, h, "no_slip", "coarse", delta_max, gamma_max, settings)[0]
+        runs[name] = solve_paths(t, h, "no_slip", "coarse", delta_max, gamma_max, settings,
+                                 uniform=even_arc(t, h, gamma_max))[0]
     fast, slow = runs["fast"], runs["slow"]
     same_paths(fast, slow)
     assert fast.stats["timing"]["linear_solver"] == linear.backend(True)
@@ -53,9 +56,15 @@ SWITCHES = {"hermite_predictor": ("newton_iterations", "chord_iterations"),
 
 
 @functools.lru_cache(maxsize=None)
+def even_arc(t, h, gamma_max):
+    """The even zone the tool gives a request serving gamma_max (solver.request)."""
+    return initial_fit(Cap(t, h), Request.serving(gamma_max)).uniform
+
+
 def paths(t, h, delta_max, gamma_max, switch_off=None):
     settings = Settings() if switch_off is None else Settings(**{switch_off: False})
-    return solve_paths(t, h, "no_slip", "coarse", delta_max, gamma_max, settings)[0]
+    return solve_paths(t, h, "no_slip", "coarse", delta_max, gamma_max, settings,
+                       uniform=even_arc(t, h, gamma_max))[0]
 
 
 @pytest.mark.parametrize("switch", SWITCHES)

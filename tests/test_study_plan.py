@@ -4,7 +4,8 @@ import pytest
 from shell_adhesion.catalogue import canonical_json, family, fingerprint
 from shell_adhesion.study.keys import pathset_key
 from shell_adhesion.study.config import validate
-from shell_adhesion.study.plan import gamma_max_bucket, make_plan
+from shell_adhesion.solver.request import gamma_bucket, ladder_gammas
+from shell_adhesion.study.plan import make_plan
 
 BASE = dict(C10_MPa=0.3, t_over_R=0.15, h_over_R=1.0, gamma_J_m2=30)
 
@@ -34,17 +35,20 @@ def test_sweeps_full_cube_axes_and_points():
 
 
 def test_gamma_ladder_rounds_up():
-    assert gamma_max_bucket(0.005) == 0.005
-    assert gamma_max_bucket(30e-3 / (0.3 * 20)) == 0.005        # 0.005 up to rounding
-    assert gamma_max_bucket(0.0050001) == 0.01
-    assert gamma_max_bucket(0.011) == 0.02
-    assert gamma_max_bucket(0.021) == 0.05
-    assert gamma_max_bucket(1.5e-4) == 2e-4
+    assert gamma_bucket(0.005) == 0.005
+    assert gamma_bucket(30e-3 / (0.3 * 20)) == 0.005        # 0.005 up to rounding
+    assert gamma_bucket(0.0050001) == 0.007
+    assert gamma_bucket(0.011) == 0.015
+    assert gamma_bucket(0.021) == 0.03
+    assert gamma_bucket(1.5e-4) == 1.5e-4
+    # a set serving up to 0.015 is fitted to answer the ladder from 0.015 down to 0.00075
+    assert ladder_gammas(0.015) == (0.001, 0.0015, 0.002, 0.003, 0.005, 0.007, 0.01, 0.015)
+    assert max(ladder_gammas(0.05)) == 0.03         # capped at the domain's GAMMA_MAX
 
 
 def test_nearby_studies_share_keys():
     a = make_plan(study(base=BASE, grid=dict(gamma_J_m2=[40, 50])))          # 0.0083
-    b = make_plan(study(base=dict(BASE, gamma_J_m2=35)))                      # 0.0058
+    b = make_plan(study(base=dict(BASE, gamma_J_m2=45)))                      # 0.0075
     assert a.shells[0].fingerprint == b.shells[0].fingerprint
 
 

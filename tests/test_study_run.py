@@ -16,7 +16,6 @@ from shell_adhesion.catalogue import Catalogue, list_entries
 from shell_adhesion.solver.path import Settings
 from shell_adhesion.solver.pathset_dataset import from_dataset
 from shell_adhesion.study import dataset
-from shell_adhesion.study.plan import restrict
 from shell_adhesion.study.run import execute, summary
 
 from conftest import ENV
@@ -231,7 +230,7 @@ def test_dataset_conventions_and_round_trip(local, tmp_path):
         entry, stored = c.fetch(plan.shells[0].key)
     ps = from_dataset(stored)
     shell = plan.shells[0]
-    served = {(shell.t_over_R, shell.h_over_R): (entry.fingerprint, restrict(ps, 0.1))}
+    served = {(shell.t_over_R, shell.h_over_R): (entry.fingerprint, ps)}
     built = dataset.build(plan, served, {}, history=a["history"])
     xr.testing.assert_identical(built, ds)
     dataset.write(built, tmp_path / "again.nc")

@@ -13,7 +13,8 @@ import time
 import numpy as np
 
 from .cavity import OPEN, Cavity, bind, first_touch, lifted
-from .energy import EnergySurface, OutOfRange, energy_surface, equilibrium, pull_off
+from .energy import (Bridged, EnergySurface, InGradedZone, NotBracketed, OutOfRange,
+                     energy_surface, equilibrium, pull_off)
 from .forms import Discretisation, discretise
 from .contact import check_interface
 from .geometry import GAMMA_MAX, Cap, InputError, check_delta_max, check_gamma, shown
@@ -63,8 +64,10 @@ def has_hole(state: State) -> bool:
 
 
 def relax_from(d: Discretisation, interface: str, start: State, gamma_max: float = GAMMA_MAX,
-               settings: Settings = Settings(), progress=None) -> RelaxationPath:
-    """Relax one loaded state until the estimated G exceeds G_SAFETY * gamma_max.
+               settings: Settings = Settings(), progress=None,
+               reach: float = 1.0) -> RelaxationPath:
+    """Relax one loaded state until the estimated G exceeds G_SAFETY * reach * gamma_max
+    (`reach` > 1 takes a path further, where its pair's G fell short: solver.request).
 
     The step is 1 / settings.relaxation_steps of the flat-punch estimate of the way down,
     at most settings.relaxation_step_max; the estimate needs a positive start stiffness,
@@ -72,7 +75,7 @@ def relax_from(d: Discretisation, interface: str, start: State, gamma_max: float
     relaxed in steps of relaxation_step_max / relaxation_steps instead.  `progress(delta)` is
     called after each state (it may raise to end the path, e.g. on a wall-time limit).
     """
-    G_stop = G_SAFETY * gamma_max
+    G_stop = G_SAFETY * reach * gamma_max
     k0 = start.dP_ddelta
     if k0 > 0 and math.isfinite(k0):
         dP_total = np.sqrt(G_stop * 4 * np.pi * start.a ** 2 * k0)
@@ -108,6 +111,7 @@ class Relaxation:
     timing: dict = field(default_factory=dict, compare=False)  # the path's Timer (not stored)
     V: np.ndarray = None    # cavity: enclosed volume / R^3 along the path (NaN if open)
     p: np.ndarray = None    # cavity: gauge pressure / C10 along the path (NaN if open)
+    reach: float = 1.0      # its stop rule's G_SAFETY * reach * gamma_max (relax_from)
 
     def __post_init__(self):
         for name in ("V", "p"):
@@ -116,12 +120,30 @@ class Relaxation:
 
     @property
     def usable(self) -> bool:
-        """Used by the energy method: the centre stays down and no free node touches."""
-        return not (self.centre_lifts or self.penetration)
+        """Used by the energy method, up to where its contact zone inverted (`upright`): no
+        free node touched the plane, and at least two states came before the centre lifted."""
+        return not self.penetration and int(np.sum(self._upright)) >= 2
+
+    @property
+    def _upright(self) -> np.ndarray:
+        """Mask of the states before the contact zone inverted (all if it never did)."""
+        if not self.centre_lifts:
+            return np.ones(len(self.delta), dtype=bool)
+        return self.delta > self.inversion_delta
+
+    def upright(self) -> "Relaxation":
+        """The path up to where its contact zone inverted (the centre left the plane): the
+        states before are a disc of contact on the plane, which the energy method needs."""
+        if not self.centre_lifts:
+            return self
+        keep = self._upright
+        return replace(self, **{k: getattr(self, k)[keep]
+                                for k in ("delta", "P", "U", "dP_ddelta", "V", "p")})
 
     @classmethod
-    def of(cls, path: RelaxationPath, d: Discretisation = None):
-        """The path's arrays; with `d`, also its views (see `relaxation_views`)."""
+    def of(cls, path: RelaxationPath, d: Discretisation = None, reach: float = 1.0):
+        """The path's arrays; with `d`, also its views (see `relaxation_views`); `reach` as
+        the path was relaxed (relax_from)."""
         start_off = has_hole(path.start) or path.start.centre_off
         inversion = path.start.delta if start_off else path.inversion_delta
         q = path.quality
@@ -130,7 +152,7 @@ class Relaxation:
                    path.centre_lifts or start_off, path.timer.newton_iterations,
                    relaxation_views(d, path) if d is not None else (),
                    float(inversion), q.J_min, q.J_max, q.detF_min, path.timer.as_dict(),
-                   path.array("V"), path.array("p"))
+                   path.array("V"), path.array("p"), float(reach))
 
 
 def loading_views(d: Discretisation, loading: LoadingPath) -> tuple:
@@ -171,6 +193,7 @@ class PathSet:
     loading_V: np.ndarray = None    # cavity: enclosed volume / R^3 (NaN if open)
     loading_p: np.ndarray = None    # cavity: gauge pressure / C10 (NaN if open)
     cavity: Cavity = OPEN           # what fills the cavity (solver.cavity)
+    uniform: float = None           # arc / R meshed evenly from the apex (None: the family's)
 
     def __post_init__(self):
         for name in ("loading_V", "loading_p"):
@@ -186,9 +209,11 @@ class PathSet:
         return energy_surface([(r.a, r.delta, r.P, r.U, r.dP_ddelta) for r in self.usable()])
 
     def usable(self) -> tuple:
-        """Relaxation paths the energy method uses (by increasing a): those whose contact
-        zone stays a disc on the plane (no inversion, no penetration outside it)."""
-        return tuple(sorted((r for r in self.relaxations if r.usable), key=lambda r: r.a))
+        """Relaxation paths the energy method uses (by increasing a), each up to where its
+        contact zone inverted (`Relaxation.upright`): the states in which the contact zone
+        is a disc on the plane and no free node touches it."""
+        return tuple(sorted((r.upright() for r in self.relaxations if r.usable),
+                            key=lambda r: r.a))
 
     def G_reached(self):
         """(a_pair, G_max): for each pair of neighbouring usable paths, the radius of its
@@ -208,13 +233,14 @@ class PathSet:
 
     def inverted(self, a) -> np.ndarray:
         """True where an equilibrium point at contact radius a / R is affected by a
-        contact-zone inversion: it lies between two usable paths that bridge an inverted
-        one, or at or beyond the radius where the loading inverted."""
+        contact-zone inversion: it lies between two usable paths that bridge a path that
+        inverted before two states (so is left out), or at or beyond the radius where the
+        loading inverted.  (A path that inverts later serves up to its inversion.)"""
         a = np.atleast_1d(np.asarray(a, dtype=float))
         out = np.zeros(a.shape, dtype=bool)
         a_use = np.array([r.a for r in self.usable()])
         for r in self.relaxations:
-            if not r.centre_lifts:
+            if not r.centre_lifts or r.usable:
                 continue
             below = a_use[a_use < r.a]
             above = a_use[a_use > r.a]
@@ -236,16 +262,26 @@ class PathSet:
         bridged there (`unreached`).
         """
         check_gamma(gamma, self.gamma_max)
-        eq = equilibrium(surface or self.surface(), gamma)
-        po = pull_off(eq)
-        limit = UNIFORM_SHARE * uniform_radius(Cap(self.t, self.h), mesh_spec(self.mesh))
+        try:
+            eq = equilibrium(surface or self.surface(), gamma)
+            po = pull_off(eq)
+        except NotBracketed as e:
+            if e.side == "large" and not self.stats.get("loading_reached_a", False):
+                why = self.stats.get("loading_stopped_by") or "its depth bound delta_max"
+                e.args = (f"{e}; the loading (no adhesion) ended at delta = "
+                          f"{self.stats.get('delta_reached', self.loading_delta[-1]):.4g} R "
+                          f"with the contact radius a = {self.loading_a[-1]:.4g} R "
+                          f"(largest: {self.loading_a.max():.4g} R), stopped by {why}",)
+            raise
+        limit = UNIFORM_SHARE * self.uniform_radius
         for name, a in (("a*", po.a_star), ("a_dagger", po.a_dagger)):
             if a > limit:
-                raise OutOfRange(
+                raise InGradedZone(
                     f"gamma/(C10 R) = {gamma:g}: the pull-off radius {name} = {a:.4g} R lies "
                     f"beyond {limit:.3g} R, where the {self.mesh} mesh's elements grow; the "
                     f"energy method is biased there by the grading (1.3 % on P* measured for "
-                    f"t/R = 0.1), which the error bar cannot see, so the value is not given")
+                    f"t/R = 0.1), which the error bar cannot see, so the value is not given",
+                    a, limit)
             near = eq.a[np.argsort(np.abs(eq.a - a))[:4]]     # the spline's support
             gap = self.unreached(gamma)
             gap = gap[(gap > near.min()) & (gap < near.max())]
@@ -254,36 +290,43 @@ class PathSet:
                 G_gap = G[np.isin(a_pair, gap)]
                 reached = (f"reached only G/(C10 R) = {np.nanmax(G_gap):.4g}"
                            if np.isfinite(G_gap).any() else "do not overlap in delta")
-                raise OutOfRange(
+                raise Bridged(
                     f"gamma/(C10 R) = {gamma:g}: near the pull-off radius {name} = {a:.4g} R "
                     f"the relaxation paths {reached} (at a = {gap[0]:.4g} R), below gamma: "
-                    f"the equilibrium curve is bridged there, so the value is not given")
+                    f"the equilibrium curve is bridged there, so the value is not given", gap)
         return eq, po
+
+    @property
+    def uniform_radius(self) -> float:
+        """Reference radius / R out to which the set's mesh is even (solver.mesh)."""
+        return uniform_radius(Cap(self.t, self.h), mesh_spec(self.mesh, self.uniform))
 
 
 def solve_loading(t: float, h: float, interface: str, mesh: str, delta_max: float,
                   settings: Settings = Settings(), progress=None, material: Material = NEO_HOOKE,
-                  cavity: Cavity = OPEN, stop_at_limit: bool = False):
+                  cavity: Cavity = OPEN, stop_at_limit: bool = False, uniform: float = None,
+                  a_stop: float = None):
     """Discretisation and loading path of one dimensionless shell; a shell or delta_max
     outside the supported domain (solver.geometry) raises InputError (a ValueError).
     With `stop_at_limit`, a loading refused by the element-quality check or stalled keeps
-    its states so far and says why (`LoadingPath.stopped_by`); else it raises.
+    its states so far and says why (`LoadingPath.stopped_by`); else it raises.  The mesh is
+    even out to `uniform` of arc (solver.mesh.mesh_spec); with `a_stop` the loading ends at
+    the first contact event reaching that contact radius / R (solver.path.load).
 
     A closed `cavity` (solver.cavity) is pressurised first with the shell free; delta is
     then measured from the first touch of the pressurised shell, whose apex displacement
     is `cavity_lift(d)` (CavitySnap if the free shell snaps before).
     """
     cap = Cap(t, h)
-    check_delta_max(delta_max, h)
+    check_delta_max(delta_max, h, t_over_R=t)
     check_interface(interface)
-    cm = cap_mesh(cap, mesh_spec(mesh))
+    cm = cap_mesh(cap, mesh_spec(mesh, uniform))
     d = discretise(cm, material=material)
-    if not cavity.closed:
-        return d, load(d, interface, delta_max, settings, progress,
-                       stop_at_limit=stop_at_limit)
-    d, x0, _ = first_touch(bind(d, cavity), settings)
+    x0 = None
+    if cavity.closed:
+        d, x0, _ = first_touch(bind(d, cavity), settings)
     return d, load(d, interface, delta_max, settings, progress, x0=x0,
-                   stop_at_limit=stop_at_limit)
+                   stop_at_limit=stop_at_limit, a_stop=a_stop)
 
 
 def cavity_lift(d: Discretisation) -> float:
@@ -297,7 +340,8 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
                 delta_max: float = 0.25, gamma_max: float = GAMMA_MAX,
                 settings: Settings = Settings(), relax_paths: bool = True,
                 progress=None, map=None, path_progress=None,
-                material: Material = NEO_HOOKE, cavity: Cavity = OPEN) -> tuple:
+                material: Material = NEO_HOOKE, cavity: Cavity = OPEN, uniform: float = None,
+                a_stop: float = None, reach=None, known=None) -> tuple:
     """Loading and relaxation paths of one shell: (PathSet, Discretisation, LoadingPath).
 
     A loading that reaches the element-quality limit (or stalls) before delta_max stops
@@ -308,30 +352,46 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
     after each relaxation path; `map` (e.g. an executor's map) runs the independent
     relaxation paths in parallel.  `material` (solver.material.Material, ratios to C10)
     is the solid; neo-Hooke by default; `cavity` (solver.cavity) what fills the cavity.
+    `uniform` (arc / R meshed evenly) and `a_stop` (the contact radius / R at which the
+    loading ends, before delta_max) fit the paths to a request (solver.request);
+    `reach(start)` gives a start's relax_from reach (default 1), and `known` maps
+    `start_key(start, reach)` to a Relaxation already computed (it is not solved again;
+    the paths this call relaxes are added to it).
     """
     if not (isinstance(gamma_max, (int, float)) and math.isfinite(gamma_max) and gamma_max > 0):
         raise InputError(f"gamma_max: {shown(gamma_max)} must be a finite number > 0 (gamma/(C10 R))")
     t0 = time.perf_counter()
     d, loading = solve_loading(t, h, interface, mesh, delta_max, settings, progress, material,
-                               cavity, stop_at_limit=True)
+                               cavity, stop_at_limit=True, uniform=uniform, a_stop=a_stop)
     t1 = time.perf_counter()
     relaxations = ()
     if relax_paths:
         starts = relaxation_starts(loading, d.capmesh)
+        reaches = [1.0 if reach is None else float(reach(s)) for s in starts]
+        last = len(starts) - 1
+        done = {}               # the paths `known` already holds (views: the last one's)
+        for i, (s, k) in enumerate(zip(starts, reaches)):
+            r = (known or {}).get(start_key(s, k))
+            if r is not None and (i < last or r.views):
+                done[i] = replace(r, views=()) if i < last and r.views else r
+        todo = [i for i in range(len(starts)) if i not in done]
         if map is None:
-            relaxations = []
-            for i, s in enumerate(starts):
-                path = relax_from(d, interface, s, gamma_max, settings)
-                relaxations.append(Relaxation.of(path, d if i == len(starts) - 1 else None))
+            for n, i in enumerate(todo):
+                path = relax_from(d, interface, starts[i], gamma_max, settings, reach=reaches[i])
+                done[i] = Relaxation.of(path, d if i == last else None, reaches[i])
                 if path_progress is not None:
-                    path_progress(len(relaxations), len(starts))
-            relaxations = tuple(relaxations)
+                    path_progress(n + 1, len(todo))
         else:
-            n = len(starts)
-            relaxations = tuple(map(relaxation_task, [t] * n, [h] * n, [interface] * n,
-                                    [mesh] * n, starts, [gamma_max] * n, [settings] * n,
-                                    [i == n - 1 for i in range(n)], [material] * n,
-                                    [cavity] * n, [cavity_lift(d)] * n))
+            n = len(todo)
+            out = map(relaxation_task, [t] * n, [h] * n, [interface] * n, [mesh] * n,
+                      [starts[i] for i in todo], [gamma_max] * n, [settings] * n,
+                      [i == last for i in todo], [material] * n, [cavity] * n,
+                      [cavity_lift(d)] * n, [None] * n, [uniform] * n,
+                      [reaches[i] for i in todo])
+            done.update(zip(todo, out))
+        relaxations = tuple(done[i] for i in range(len(starts)))
+        if known is not None:
+            known.update((start_key(starts[i], reaches[i]), done[i]) for i in todo)
     t2 = time.perf_counter()
     stats = dict(dofs=int(d.ndof), elements=int(d.capmesh.mesh.nelements),
                  loading_states=len(loading.states),
@@ -342,7 +402,15 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
                  loading_s=t1 - t0, relaxation_s=t2 - t1,
                  timing=timing_stats(loading.timer, relaxations))
     return pathset_of(t, h, interface, mesh, delta_max, gamma_max, loading, relaxations,
-                      stats, loading_views(d, loading), cavity, cavity_lift(d)), d, loading
+                      stats, loading_views(d, loading), cavity, cavity_lift(d),
+                      uniform), d, loading
+
+
+def start_key(start: State, reach: float = 1.0) -> tuple:
+    """What identifies the relaxation path of a loaded state (within one loading): where it
+    starts (delta, a / R) and how far it goes (`reach`).  A Relaxation's own is
+    (r.delta[0], r.a, r.reach)."""
+    return (float(start.delta), float(start.a), float(reach))
 
 
 def timing_stats(loading_timer, relaxations) -> dict:
@@ -366,7 +434,7 @@ def timing_stats(loading_timer, relaxations) -> dict:
 
 
 def pathset_of(t, h, interface, mesh, delta_max, gamma_max, loading, relaxations, stats,
-               views=(), cavity: Cavity = OPEN, lift: float = 0.0):
+               views=(), cavity: Cavity = OPEN, lift: float = 0.0, uniform: float = None):
     """The PathSet of a loading path, its Relaxations and the loading views; the
     relaxations' views move to the set's (profiles, then stress maps, each in stage order).
     The set's stats gain the element quality and the contact-zone inversion
@@ -377,7 +445,8 @@ def pathset_of(t, h, interface, mesh, delta_max, gamma_max, loading, relaxations
     # each path's timing lives on in the set's stats (timing_stats), not in the set
     relaxations = tuple(replace(r, views=(), timing={}) if r.views or r.timing else r
                         for r in relaxations)
-    stats = {**provenance_stats(loading, relaxations), **stats}
+    stats = {**provenance_stats(loading, relaxations), **stats,
+             "loading_reached_a": bool(loading.reached_a)}
     if cavity.closed:
         s0 = loading.states[0]
         stats.update(cavity_lift=float(lift), cavity_V_touch=float(s0.V),
@@ -385,13 +454,14 @@ def pathset_of(t, h, interface, mesh, delta_max, gamma_max, loading, relaxations
     return PathSet(t, h, interface, mesh, delta_max, gamma_max,
                    loading.array("delta"), loading.array("P"), loading.array("a"),
                    loading.array("U"), loading.array("joined"), relaxations, stats, views,
-                   loading.array("V"), loading.array("p"), cavity)
+                   loading.array("V"), loading.array("p"), cavity,
+                   None if uniform is None else float(uniform))
 
 
 def G_reached(relaxations, surface=None):
     """(a_pair, G_max) of the usable relaxation paths (see PathSet.G_reached); `surface()`
     gives their energy surface if it is already built."""
-    usable = sorted((r for r in relaxations if r.usable), key=lambda r: r.a)
+    usable = sorted((r.upright() for r in relaxations if r.usable), key=lambda r: r.a)
     if len(usable) < 2:
         return np.zeros(0), np.zeros(0)
     surf = surface() if surface is not None else energy_surface(
@@ -441,22 +511,24 @@ def provenance_stats(loading: LoadingPath, relaxations) -> dict:
 def relaxation_task(t: float, h: float, interface: str, mesh: str, start: State,
                     gamma_max: float = GAMMA_MAX, settings: Settings = Settings(),
                     views: bool = False, material: Material = NEO_HOOKE,
-                    cavity: Cavity = OPEN, lift: float = 0.0, progress=None) -> Relaxation:
+                    cavity: Cavity = OPEN, lift: float = 0.0, progress=None,
+                    uniform: float = None, reach: float = 1.0) -> Relaxation:
     """One relaxation path as an independent task (the discretisation is built once per
     process: `task_discretisation`); with `views`, it keeps the path's profiles and stress
-    map; `progress` as in `relax_from`.  A closed `cavity` needs the loading's `lift`
-    (`cavity_lift`)."""
-    d = task_discretisation(t, h, mesh, material, cavity, lift)
-    return Relaxation.of(relax_from(d, interface, start, gamma_max, settings, progress),
-                         d if views else None)
+    map; `progress` and `reach` as in `relax_from`.  A closed `cavity` needs the loading's
+    `lift` (`cavity_lift`); `uniform` is the mesh's even arc (solver.mesh.mesh_spec)."""
+    d = task_discretisation(t, h, mesh, material, cavity, lift, uniform)
+    return Relaxation.of(relax_from(d, interface, start, gamma_max, settings, progress, reach),
+                         d if views else None, reach)
 
 
 @lru_cache(maxsize=2)
 def task_discretisation(t: float, h: float, mesh: str, material: Material = NEO_HOOKE,
-                        cavity: Cavity = OPEN, lift: float = 0.0) -> Discretisation:
+                        cavity: Cavity = OPEN, lift: float = 0.0,
+                        uniform: float = None) -> Discretisation:
     """The discretisation of a shell (lifted by `lift` / R if its cavity is closed), kept
     for the process's next relaxation task of the same shell: a worker relaxes many paths
     of one shell, and the build takes 60 ms (base shell) to 220 ms (solid cap) on the
     default mesh.  Immutable, so sharing it changes no result."""
-    d = discretise(cap_mesh(Cap(t, h), mesh_spec(mesh)), material=material)
+    d = discretise(cap_mesh(Cap(t, h), mesh_spec(mesh, uniform)), material=material)
     return lifted(bind(d, cavity), lift) if cavity.closed else d

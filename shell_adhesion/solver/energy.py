@@ -20,6 +20,33 @@ class OutOfRange(ValueError):
     """The requested gamma is outside what the stored paths cover."""
 
 
+class NotBracketed(OutOfRange):
+    """The equilibrium curve does not bracket the pull-off: it is still falling at its end
+    `a_end` / R on the `side` "large" (the pull-off lies beyond the largest contact radius
+    relaxed: load deeper) or "small"; or (`few`) too few paths reach equilibrium."""
+
+    def __init__(self, text, side="large", a_end=float("nan"), few=False):
+        super().__init__(text)
+        self.side, self.a_end, self.few = side, a_end, few
+
+
+class InGradedZone(OutOfRange):
+    """A pull-off radius `a` / R lies beyond `limit` / R, where the mesh's elements grow."""
+
+    def __init__(self, text, a, limit):
+        super().__init__(text)
+        self.a, self.limit = a, limit
+
+
+class Bridged(OutOfRange):
+    """Near a pull-off radius, the pairs of paths at `a_pairs` / R stopped before G
+    reached gamma: the equilibrium curve is bridged there."""
+
+    def __init__(self, text, a_pairs):
+        super().__init__(text)
+        self.a_pairs = tuple(a_pairs)
+
+
 def hermite_quintic(x, y, dy, d2y) -> BPoly:
     """The piecewise quintic through y and its first two derivatives at increasing x
     (Bernstein coefficients of each interval from the end values, as
@@ -135,8 +162,8 @@ def equilibrium(surface: EnergySurface, gamma: float) -> Equilibrium:
         Pl.append(float(surface.P_pair(k, delta)))
     a, dl, Pl = map(np.array, (a, dl, Pl))
     if len(a) < 4:
-        raise OutOfRange(f"gamma/(C10 R) = {gamma:g}: fewer than 4 relaxation paths reach "
-                         "equilibrium; the paths are too short for this gamma")
+        raise NotBracketed(f"gamma/(C10 R) = {gamma:g}: fewer than 4 relaxation paths reach "
+                           "equilibrium; the paths are too short for this gamma", few=True)
     sP, sd = CubicSpline(a, Pl), CubicSpline(a, dl)
     return Equilibrium(gamma, a, dl, Pl, sP(a, 1) > 0, sd(a, 1) > 0)
 
@@ -163,15 +190,19 @@ def pull_off(eq: Equilibrium) -> PullOff:
     star = _interior_min(eq.a, eq.P)
     dagger = _interior_min(eq.a, eq.delta)
     if star is None or dagger is None:
-        raise OutOfRange(f"gamma/(C10 R) = {eq.gamma:g}: pull-off is not bracketed by the "
-                         f"equilibrium curve (a from {eq.a[0]:.4g} to {eq.a[-1]:.4g} R)")
+        y = eq.P if star is None else eq.delta
+        side = "large" if y[-1] <= y[0] else "small"
+        raise NotBracketed(f"gamma/(C10 R) = {eq.gamma:g}: pull-off is not bracketed by the "
+                           f"equilibrium curve (a from {eq.a[0]:.4g} to {eq.a[-1]:.4g} R)",
+                           side, eq.a[-1] if side == "large" else eq.a[0])
     for name, y, (_, low) in (("P", eq.P, star), ("delta", eq.delta, dagger)):
         if min(y[0], y[-1]) < low:
-            end = eq.a[0] if y[0] < y[-1] else eq.a[-1]
-            raise OutOfRange(f"gamma/(C10 R) = {eq.gamma:g}: the equilibrium curve's {name} "
-                             f"is still falling at its end a = {end:.4g} R, below its lowest "
-                             f"interior minimum: the pull-off lies beyond the contact radii "
-                             f"reached (raise delta_max)")
+            side = "small" if y[0] < y[-1] else "large"
+            end = eq.a[0] if side == "small" else eq.a[-1]
+            raise NotBracketed(f"gamma/(C10 R) = {eq.gamma:g}: the equilibrium curve's "
+                               f"{name} is still falling at its end a = {end:.4g} R, below its "
+                               f"lowest interior minimum: the pull-off lies beyond the contact "
+                               f"radii reached", side, end)
     sP, sd = CubicSpline(eq.a, eq.P), CubicSpline(eq.a, eq.delta)
     zeros = sP.roots(extrapolate=False)
     zeros = zeros[zeros > star[0]]

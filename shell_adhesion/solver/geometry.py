@@ -71,6 +71,10 @@ class Cap:
 T_MIN = 0.02          # thinnest shell, t / R
 H_MIN = 0.2           # shallowest cap, h / R (and h > t for a shell)
 DELTA_MAX = 0.25      # deepest loading, delta / R
+DELTA_MAX_THIN = 0.5  # deepest loading of a thin shell (t < THIN_T), delta / R: it flattens
+THIN_T = 0.15         # onto the plane straining little, and pulls off at contact radii up
+#                       to 0.77 R (t/R = 0.02, h/R = 0.5, gamma/(C10 R) = 0.03), which a
+#                       loading to 0.25 R does not reach (a = 0.70 R there)
 GAMMA_MAX = 0.03      # largest gamma / (C10 R) the relaxation paths serve
 
 
@@ -103,15 +107,33 @@ def check_cap(t_over_R, h_over_R, t_name="t/R", h_name="h/R"):
                          f"h/R >= {H_MIN:g} (shallower caps are not solved reliably)")
 
 
-def check_delta_max(delta_max_over_R, h_over_R=None, name="delta_max/R", h_name="h/R"):
-    """Raise InputError unless 0 < delta_max/R <= DELTA_MAX (and < h/R if given: the rim
-    stays above the plane)."""
+DEPTH_SHARE = 0.9     # a loading without an explicit delta_max stops above 0.9 of the cap's depth
+
+
+def domain_delta_max(t_over_R: float = 1.0) -> float:
+    """The supported domain's deepest delta / R for a shell of thickness t / R: DELTA_MAX,
+    DELTA_MAX_THIN for a thin shell (t < THIN_T)."""
+    return DELTA_MAX_THIN if t_over_R < THIN_T else DELTA_MAX
+
+
+def delta_bound(cap: "Cap") -> float:
+    """The deepest delta / R a loading of `cap` may reach without an explicit delta_max:
+    the domain's (domain_delta_max), below DEPTH_SHARE of the cap's depth."""
+    return min(domain_delta_max(cap.t), DEPTH_SHARE * cap.h)
+
+
+def check_delta_max(delta_max_over_R, h_over_R=None, name="delta_max/R", h_name="h/R",
+                    t_over_R=1.0):
+    """Raise InputError unless 0 < delta_max/R <= the domain's bound for t/R
+    (domain_delta_max), and < h/R if given (the rim stays above the plane)."""
     _finite(name, delta_max_over_R)
     if not delta_max_over_R > 0:
         raise InputError(f"{name}: {delta_max_over_R:g} must be > 0")
-    if delta_max_over_R > DELTA_MAX * (1 + 1e-12):
+    bound = domain_delta_max(t_over_R)
+    if delta_max_over_R > bound * (1 + 1e-12):
+        thin = f" for t/R = {t_over_R:g}" if t_over_R < 1.0 else ""
         raise InputError(f"{name}: {delta_max_over_R:g} is outside the supported domain "
-                         f"delta/R <= {DELTA_MAX:g}")
+                         f"delta/R <= {bound:g}{thin}")
     if h_over_R is not None and delta_max_over_R >= h_over_R:
         raise InputError(f"{name}: {delta_max_over_R:g} must be < h/R ({h_over_R:g}, {h_name})")
 

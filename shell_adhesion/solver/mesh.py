@@ -36,7 +36,7 @@ _BASE = MeshSpec("default", h_apex=0.004, growth=1.08, h_max=0.08,
 
 # the family: each level halves the sizes of the one before; 'coarser' only serves as the
 # second mesh of the error estimate of 'coarse' (`coarser_mesh`), 'finer' as a reference
-LEVELS = {"coarser": -2, "coarse": -1, "default": 0, "fine": 1, "finer": 2}
+LEVELS = {"coarsest": -3, "coarser": -2, "coarse": -1, "default": 0, "fine": 1, "finer": 2}
 
 
 def coarser_mesh(name: str) -> str:
@@ -45,29 +45,23 @@ def coarser_mesh(name: str) -> str:
     return next(n for n, v in LEVELS.items() if v == level)
 
 
-def mesh_spec(name: str) -> MeshSpec:
-    """The named mesh: 'coarse', 'default' or 'fine' (each halves the sizes of the last)."""
+def mesh_spec(name: str, uniform: float = None) -> MeshSpec:
+    """The named mesh: 'coarse', 'default' or 'fine' (each halves the sizes of the last),
+    evenly meshed out to `uniform` of arc / R from the apex (default: 0.15, the base
+    shell's; `solver.request` sizes it to the contact radii a request needs)."""
     levels = LEVELS
     if name not in levels:
         raise InputError(f"mesh: {name!r} must be one of coarse, default, fine")
     f = 2.0 ** (-levels[name])
     b = _BASE
     return MeshSpec(name, b.h_apex * f, b.growth ** f, b.h_max * f,
-                    b.layer0 * f, b.layer_growth ** f, b.layer_max * f, b.uniform)
-
-
-# shells thinner than THIN_T pull off at larger radii (a* = 0.23 R for t/R = 0.1 at
-# gamma/(C10 R) = 0.005, against 0.1 R for t/R = 0.15): their uniform arc is widened
-THIN_T = 0.15
-UNIFORM_MAX = 0.45
+                    b.layer0 * f, b.layer_growth ** f, b.layer_max * f,
+                    b.uniform if uniform is None else float(uniform))
 
 
 def uniform_arc(cap: Cap, spec: MeshSpec) -> float:
-    """Arc length / R from the apex meshed at the apex size: spec.uniform, times
-    (THIN_T / t)^2 for a shell thinner than THIN_T, at most UNIFORM_MAX."""
-    if cap.solid or cap.t >= THIN_T:
-        return spec.uniform
-    return min(spec.uniform * (THIN_T / cap.t) ** 2, max(spec.uniform, UNIFORM_MAX))
+    """Arc length / R from the apex meshed at the apex size (at most the cap's own)."""
+    return min(spec.uniform, cap.theta_outer)
 
 
 def uniform_radius(cap: Cap, spec: MeshSpec) -> float:
@@ -77,7 +71,7 @@ def uniform_radius(cap: Cap, spec: MeshSpec) -> float:
     (measured on t/R = 0.1 at gamma/(C10 R) = 0.005, a* = 0.23 R: P* 1.3 % higher with
     the contact edge in graded elements than in even ones on the default mesh, and the
     coarse mesh the same; 0.7 % on the fine mesh)."""
-    return float(np.sin(min(uniform_arc(cap, spec), cap.theta_outer)))
+    return float(np.sin(uniform_arc(cap, spec)))
 
 
 def graded(length, h0, growth, hmax, uniform=0.0):
@@ -133,7 +127,7 @@ def _tfi(bottom, top, left, right):
 
 
 def _solid_blocks(cap, spec):
-    theta = graded(cap.theta_outer, spec.h_apex, spec.growth, spec.h_max, spec.uniform)
+    theta = graded(cap.theta_outer, spec.h_apex, spec.growth, spec.h_max, uniform_arc(cap, spec))
     k = int(np.argmin(np.abs(theta - min(0.6, 0.6 * cap.theta_outer))))
     th = with_midpoints(theta)
     arc = np.stack([np.sin(th), 1.0 - np.cos(th)], axis=-1)

@@ -130,7 +130,9 @@ class LoadingPath:
     interface: str
     states: tuple
     timer: Timer
-    stopped_by: str = ""      # why loading ended before delta_max ("": it reached delta_max)
+    stopped_by: str = ""      # why loading ended before delta_max ("": it reached delta_max
+    #                           or the contact radius asked for)
+    reached_a: bool = False   # it ended at the contact radius asked for (`load`'s a_stop)
 
     @property
     def delta_reached(self) -> float:
@@ -364,9 +366,13 @@ class _Problem:
 
 def load(d: Discretisation, interface: str, delta_max: float,
          settings: Settings = Settings(), progress=None, x0=None,
-         stop_at_limit: bool = False) -> LoadingPath:
+         stop_at_limit: bool = False, a_stop: float = None) -> LoadingPath:
     """Push the rim down from delta = 0 to delta_max, locating every contact event.
 
+    With `a_stop` the loading ends at the first contact event whose contact radius a / R
+    reaches it (`reached_a`), if that comes before delta_max.  The states are those of a
+    loading to delta_max up to there, so a loading with a larger a_stop continues the
+    same sequence of states.
     `progress(delta)` is called after each converged state if given.  `x0`: the state at
     delta = 0 touching the plane at the apex (a pressurised cavity, solver.cavity), else
     the undeformed shell.  A state refused by the element-quality check (QualityError) or
@@ -463,9 +469,12 @@ def load(d: Discretisation, interface: str, delta_max: float,
         states.append(replace(new, dP_ddelta_left=dP_left))
         if progress is not None:
             progress(delta)
+        if a_stop is not None and joined > 0 and new.a >= a_stop:
+            break
     dx, dP = pb.tangent_direction(K, c)
     states[-1] = _with_stiffness(states[-1], dP, dx)
-    return LoadingPath(interface, tuple(states), timer)
+    return LoadingPath(interface, tuple(states), timer,
+                       reached_a=delta < delta_max * (1 - 1e-12))
 
 
 def _chord_pays(history, goal) -> bool:
@@ -597,8 +606,14 @@ def relax(d: Discretisation, interface: str, start: State, stop, step: float,
         x, delta, K, r = xn, dn, Kn, rn
         dx, dP = pb.tangent_direction(K, c, pb.last_lu)
         pulled = centre_pulled(d, r, held)
-        # the held zone's edge is a crack tip: pointwise J there is not a quality measure
-        s = pb.state(x, delta, r, held, -1, hist, dP, centre_off=pulled, check_J=False)
+        # the held zone's edge is a crack tip: pointwise J there is not a quality measure;
+        # a folded element, or material across the axis, ends the path (its states so far
+        # stay: the energy method uses what was reached)
+        try:
+            s = pb.state(x, delta, r, held, -1, hist, dP, centre_off=pulled, check_J=False)
+        except QualityError as err:
+            ended_by = str(err)
+            break
         states.append(s)
         if len(outside) and gaps(d, x, outside).min() < -settings.gap_tol:
             penetration = True

@@ -19,7 +19,7 @@ from .case import PathSet, Relaxation
 from .cavity import Cavity
 from .postprocess import Profile, StressMap
 
-LAYOUT = 2          # version of this layout (part of the catalogue key of a path set)
+LAYOUT = 3          # version of this layout (part of the catalogue key of a path set)
 
 
 # descriptions of known fields; a field the solver adds later is stored all the same
@@ -149,6 +149,8 @@ def to_dataset(ps: PathSet) -> xr.Dataset:
         Conventions="CF-1.8", layout=LAYOUT, stats=_json_stats(ps.stats),
         cavity=json.dumps(ps.cavity.as_dict(), sort_keys=True),
         **{a: getattr(ps, f) for f, a in _ATTRS.items()})
+    if ps.uniform is not None:      # the even arc the set was meshed with (solver.request)
+        attrs["uniform_arc_over_R"] = float(ps.uniform)
     return xr.Dataset(data, attrs=attrs)
 
 
@@ -165,6 +167,8 @@ def from_dataset(ds: xr.Dataset) -> PathSet:
             kw[f.name] = ds[f.name].values
     if "cavity" in ds.attrs:
         kw["cavity"] = Cavity(**json.loads(ds.attrs["cavity"]))
+    if "uniform_arc_over_R" in ds.attrs:
+        kw["uniform"] = float(ds.attrs["uniform_arc_over_R"])
     return PathSet(relaxations=_relaxations_of(ds), stats=json.loads(ds.attrs["stats"]),
                    views=_views_of(ds), **kw)
 

@@ -52,7 +52,10 @@ def von_mises_field(d: Discretisation, x):
 def nodal_von_mises(d: Discretisation, x):
     """Von Mises stress / C10 at the Q2 nodes (n2,): the stress evaluated at each node in
     every element holding it, averaged over those elements (on the axis the hoop
-    stretch u_r / r is taken as its limit d u_r / d r)."""
+    stretch u_r / r is taken as its limit d u_r / d r).  An element whose deformation
+    gradient, extrapolated to a node, has J <= 0 there (a badly distorted element at a
+    stress singularity such as the rim's inner corner) gives that node no value; a node
+    with none is NaN."""
     mesh = d.capmesh.mesh
     at_nodes = (np.ascontiguousarray(ElementQuad2.doflocs.T), np.ones(9))
     bu = CellBasis(mesh, ElementQuad2(), quadrature=at_nodes)
@@ -71,11 +74,15 @@ def nodal_von_mises(d: Discretisation, x):
     f[4] = np.where(on_axis, f[0], 1 + u_r / np.where(on_axis, 1.0, r))
     Np = np.array([np.asarray(bp.basis[b][0]) for b in range(4)])
     p = np.einsum("beq,be->eq", Np, x[d.edofs[18:]])
-    vm = von_mises(cauchy_stress(f, p, d.material))                             # (E, 9 nodes)
+    J = (f[0] * f[3] - f[1] * f[2]) * f[4]
+    valid = J > 0
+    f = np.where(valid, f, np.eye(5)[[0, 3, 4]].sum(axis=0)[:, None, None])  # identity there
+    vm = np.where(valid, von_mises(cauchy_stress(f, p, d.material)), 0.0)  # (E, 9 nodes)
     nodes = d.edofs[:9].T                                               # (E, 9)
     total = np.bincount(nodes.ravel(), weights=vm.ravel(), minlength=d.n2)
-    count = np.bincount(nodes.ravel(), minlength=d.n2)
-    return total / count
+    count = np.bincount(nodes.ravel(), weights=valid.ravel(), minlength=d.n2)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(count > 0, total / count, np.nan)
 
 
 def triangles(d: Discretisation):

@@ -14,13 +14,15 @@ import sys
 import time
 
 from shell_adhesion.solver import __version__
-from shell_adhesion.solver.case import PathSet, solve_paths
+from shell_adhesion.solver.case import PathSet
+from shell_adhesion.solver.request import (Request, answers, gamma_bucket, initial_fit,
+                                           solve_request)
 from shell_adhesion.solver.cavity import MODES as CAVITY_MODES, OPEN, P_ATM_KPA, Cavity, \
     CavitySnap, check_cavity
 from shell_adhesion.solver.geometry import GAMMA_MAX, check_gamma
 from shell_adhesion.solver.contact import INTERFACES
 from shell_adhesion.solver.path import MaterialLimitError
-from shell_adhesion.solver.geometry import InputError, check_cap, check_delta_max
+from shell_adhesion.solver.geometry import Cap, InputError, check_cap, check_delta_max
 from shell_adhesion.solver.material import MODELS, NEO_HOOKE, Material
 from shell_adhesion.solver.error_bars import estimate as error_estimate
 from shell_adhesion.solver.mesh import coarser_mesh
@@ -30,7 +32,6 @@ from shell_adhesion.solver.scaling import check_C10, check_finite, check_R, gamm
 from . import case_report
 
 MESHES = ("coarse", "default", "fine")
-GAMMA_HEADROOM = 1.25   # the paths serve up to 1.25 x the largest gamma asked for
 
 # the name of each input in the Python API (the command line passes its flags instead)
 API_NAMES = dict(R_mm="R_mm", t_mm="t_mm", h_mm="h_mm", C10_MPa="C10_MPa",
@@ -87,7 +88,7 @@ class CaseInput:
     t_mm: float
     h_mm: float
     C10_MPa: float
-    delta_max_mm: float
+    delta_max_mm: float        # None: as deep as the gammas need (solver.request)
     gamma_J_m2: tuple = ()
     interface: str = "no_slip"
     mesh: str = "default"
@@ -156,7 +157,8 @@ def case_input(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2=(), delta_max_mm=None,
     """Check the input of one shell; InputError names the field (as `names` calls it).
 
     `names` maps each argument to the caller's name for it (default API_NAMES; the
-    command line gives its flags).  delta_max_mm defaults to R/4.  The material is
+    command line gives its flags).  delta_max_mm None (the default) loads as deep as the
+    requested pull-offs need (solver.request), within the domain.  The material is
     checked by `material_of` (model name, coefficients, Drucker stability), the cavity
     by `cavity_of`.
     """
@@ -165,8 +167,8 @@ def case_input(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2=(), delta_max_mm=None,
     t = check_finite(t_mm, n["t_mm"], "mm")
     h = check_finite(h_mm, n["h_mm"], "mm")
     C10 = check_finite(C10_MPa, n["C10_MPa"], "MPa")
-    delta_max = R / 4 if delta_max_mm is None else check_finite(delta_max_mm,
-                                                                 n["delta_max_mm"], "mm")
+    delta_max = None if delta_max_mm is None else check_finite(delta_max_mm,
+                                                                n["delta_max_mm"], "mm")
     if isinstance(gamma_J_m2, (str, Real)):
         gamma_J_m2 = [gamma_J_m2]
     gammas = tuple(check_finite(g, n["gamma_J_m2"], "J/m^2") for g in gamma_J_m2)
@@ -178,8 +180,10 @@ def case_input(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2=(), delta_max_mm=None,
         raise InputError(f"{n['cavity']}: {cavity} needs a shell (t < R); a solid cap "
                          f"({n['t_mm']} = {t:g} mm = R) has no cavity")
     check_cap(t / R, h / R, _ratio(n["t_mm"], "t", t, R), _ratio(n["h_mm"], "h", h, R))
-    check_delta_max(delta_max / R, h / R, _ratio(n["delta_max_mm"], "delta_max", delta_max, R),
-                    n["h_mm"])
+    if delta_max is not None:
+        check_delta_max(delta_max / R, h / R,
+                        _ratio(n["delta_max_mm"], "delta_max", delta_max, R), n["h_mm"],
+                        t_over_R=t / R)
     for g in gammas:
         check_gamma(gamma_hat(g, C10, R), GAMMA_MAX, n["gamma_J_m2"], f"{g:g} J/m^2",
                     f"with C10 = {C10:g} MPa and R = {R:g} mm")
@@ -207,7 +211,7 @@ class CaseResult:
         The dimensionless FE paths (lengths / R, forces / (C10 R^2), energies /
         (C10 R^3)); they serve any gamma / (C10 R) up to ``pathset.gamma_max``.
     adhesion : tuple
-        One ``(gamma_J_m2, Equilibrium, PullOff)`` per gamma, dimensionless.
+        One ``(gamma_J_m2, Equilibrium, PullOff)`` per gamma answered, dimensionless.
     provenance : dict
         Package version, mesh, interface, dofs, Newton iterations, wall times [s] and
         solver tolerances.
@@ -215,7 +219,13 @@ class CaseResult:
         The same shell on the next coarser mesh of the family, whose values give the
         error bars (`solver.error_bars`); None with ``error_bars=False``.
     coarser_pull_off : tuple
-        Its PullOff per gamma (None where its paths do not reach the pull-off).
+        Its PullOff per answered gamma (None where its paths do not reach the pull-off).
+    coarsest, coarsest_pull_off :
+        The same on the mesh after it: with three meshes converging monotonically the
+        error bars use the observed order (solver.error_bars).
+    refused : tuple
+        ``(gamma_J_m2, reason)`` of each gamma whose pull-off the paths cannot vouch for
+        (the command exits 1 if there is any).
     """
 
     input: CaseInput
@@ -223,7 +233,10 @@ class CaseResult:
     adhesion: tuple = ()
     provenance: dict = field(default_factory=dict)
     coarser: PathSet = None         # the same shell on the next coarser mesh (error bars)
-    coarser_pull_off: tuple = ()    # its PullOff per gamma (None: out of its range)
+    coarser_pull_off: tuple = ()    # its PullOff per answered gamma (None: out of its range)
+    coarsest: PathSet = None        # and on the one after it (Richardson error bars)
+    coarsest_pull_off: tuple = ()
+    refused: tuple = ()             # (gamma_J_m2, reason) of each gamma not answered
 
     def to_dict(self) -> dict:
         """The result as plain JSON-able data (NaN as None): input, loading, relaxation,
@@ -264,7 +277,10 @@ def solve_case(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2=(), *, delta_max_mm=None,
         ``solver.case.GAMMA_MAX``.  One set of FE paths serves them all.  Without any,
         only the loading curve is computed.
     delta_max_mm : float, optional
-        Deepest rim approach delta [mm], 0 < delta_max < h and at most R/4 (the supported domain); default R/4.
+        Deepest rim approach delta [mm], 0 < delta_max < h and at most R/4 (R/2 for a
+        thin shell, t < 0.15 R: the supported domain).  Default: as deep as the requested
+        pull-offs need (their equilibrium curves turned with a margin; solver.request),
+        at most that bound and 0.9 h; without gamma, to that bound.
     interface : {"no_slip", "frictionless"}
         Interface model (default no_slip, the paper's cohesive contact).
     mesh : {"coarse", "default", "fine"}
@@ -319,20 +335,28 @@ def solve_case(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2=(), *, delta_max_mm=None,
     return _solve(inp, progress, error_bars)
 
 
-def _coarser(inp: CaseInput, gamma_max: float, g_hats):
-    """The shell on the next coarser mesh and its pull-off per gamma (None where its
-    paths do not give one)."""
-    ps, _, _ = solve_paths(inp.t_mm / inp.R_mm, inp.h_mm / inp.R_mm, inp.interface,
-                           coarser_mesh(inp.mesh), inp.delta_max_mm / inp.R_mm, gamma_max,
-                           relax_paths=bool(g_hats), material=inp.material,
-                           cavity=inp.cavity)
+def _request(inp: CaseInput, gamma_max) -> Request:
+    """What the FE paths of `inp` must answer (solver.request): the ladder of gammas up to
+    `gamma_max` (None: the loading only), as a study's set of the same shell."""
+    return Request.serving(gamma_max, None if inp.delta_max_mm is None
+                           else inp.delta_max_mm / inp.R_mm)
+
+
+def _companions(inp: CaseInput, gamma_max: float, g_hats):
+    """The shell on the next two coarser meshes of the family, each fitted to the same
+    request, with its pull-off per gamma (None where its paths do not give one)."""
     out = []
-    for gh in g_hats:
-        try:
-            out.append(ps.pull_off(gh)[1])
-        except ValueError:          # OutOfRange, or a surface it cannot build
-            out.append(None)
-    return ps, tuple(out)
+    mesh = inp.mesh
+    for _ in range(2):
+        mesh = coarser_mesh(mesh)
+        ps, _, _ = solve_request(inp.t_mm / inp.R_mm, inp.h_mm / inp.R_mm,
+                                 _request(inp, gamma_max if g_hats else None), gamma_max,
+                                 inp.interface, mesh,
+                                 material=inp.material, cavity=inp.cavity)
+        got = answers(ps, g_hats) if g_hats else {}
+        out.append((ps, tuple(None if isinstance(got[g], Exception) else got[g][1]
+                              for g in g_hats)))
+    return out
 
 
 def _solve(inp: CaseInput, progress: bool, error_bars: bool = True) -> CaseResult:
@@ -340,25 +364,34 @@ def _solve(inp: CaseInput, progress: bool, error_bars: bool = True) -> CaseResul
 
     R, C10 = inp.R_mm, inp.C10_MPa
     g_hats = [gamma_hat(g, C10, R) for g in inp.gamma_J_m2]
-    gamma_max = max(g_hats) * GAMMA_HEADROOM if g_hats else GAMMA_MAX
+    gamma_max = gamma_bucket(max(g_hats)) if g_hats else GAMMA_MAX
+    request = _request(inp, gamma_max if g_hats else None)
+    depth = initial_fit(Cap(inp.t_mm / R, inp.h_mm / R), request).delta_max * R
     t0 = time.perf_counter()
-    with tqdm(total=round(inp.delta_max_mm, 6), unit="mm", desc="loading", file=sys.stderr,
+    with tqdm(total=round(depth, 6), unit="mm", desc="loading", file=sys.stderr,
               disable=None if progress else True, leave=False) as bar:
+        stage = ["loading"]
+
         def on_state(delta):
+            if stage[0] != "loading":   # a further solve of the fit loads again
+                stage[0] = "loading"
+                bar.set_description("loading")
+                bar.unit = "mm"
+                bar.reset(round(depth, 6))
             bar.update(round(delta * R, 6) - bar.n)
 
         def on_path(done, total):
             if done == 1:
+                stage[0] = "relaxation"
                 bar.set_description("relaxation paths")
                 bar.unit = "path"
                 bar.reset(total)
             bar.update(1)
         try:
-            ps, d, loading = solve_paths(inp.t_mm / R, inp.h_mm / R, inp.interface, inp.mesh,
-                                         inp.delta_max_mm / R, gamma_max,
-                                         relax_paths=bool(g_hats), progress=on_state,
-                                         path_progress=on_path, material=inp.material,
-                                         cavity=inp.cavity)
+            ps, d, loading = solve_request(inp.t_mm / R, inp.h_mm / R, request, gamma_max,
+                                           inp.interface, inp.mesh, progress=on_state,
+                                           path_progress=on_path, material=inp.material,
+                                           cavity=inp.cavity)
         except CavitySnap as err:
             kPa = C10 * 1e3
             raise InputError(f"cavity pressure: {err.p_target * kPa:g} kPa makes the free shell "
@@ -367,36 +400,56 @@ def _solve(inp: CaseInput, progress: bool, error_bars: bool = True) -> CaseResul
         except MaterialLimitError as e:     # the same reason, in mm
             e.args = (e.text(R, "mm", "delta_max_mm"),)
             raise
-    t1 = t0 + ps.stats["loading_s"]
-    t2 = t1 + ps.stats["relaxation_s"]
-    adhesion = ()
+    t_fe = time.perf_counter()
+    adhesion, refused = [], []
     if g_hats:
-        surface = ps.surface()
-        adhesion = tuple((g, *ps.pull_off(gh, surface)) for g, gh in zip(inp.gamma_J_m2, g_hats))
+        got = answers(ps, g_hats)
+        for g, gh in zip(inp.gamma_J_m2, g_hats):
+            if isinstance(got[gh], Exception):
+                refused.append((g, str(got[gh])))
+            else:
+                adhesion.append((g, *got[gh]))
     t_energy = time.perf_counter()
-    coarser, coarser_po = None, ()
-    if error_bars:
-        coarser, coarser_po = _coarser(inp, gamma_max, g_hats)
+    companions = _companions(inp, gamma_max, g_hats) if error_bars else []
     t3 = time.perf_counter()
+    answered = [gh for g, gh in zip(inp.gamma_J_m2, g_hats) if g in {a[0] for a in adhesion}]
+    pick = lambda pos: tuple(pos[g_hats.index(gh)] for gh in answered)
     settings = Settings()
     provenance = {
         "version": __version__, "mesh": inp.mesh, "interface": inp.interface,
         "material": inp.material.as_dict(),
         "dofs": int(d.ndof), "elements": int(d.capmesh.mesh.nelements),
-        "newton_iterations": loading.timer.newton_iterations
-        + sum(r.newton_iterations for r in ps.relaxations),
+        "newton_iterations": ps.stats["loading_newton_iterations"]
+        + ps.stats["relaxation_newton_iterations"],
         "wall_s": round(t3 - t0, 3),
-        "time_split_s": {"loading": round(t1 - t0, 3), "relaxation": round(t2 - t1, 3),
-                         "energy_method": round(t_energy - t2, 3),
-                         "coarser_mesh": round(t3 - t_energy, 3)},
-        "timing": {**ps.stats.get("timing", {}), "energy_method_s": round(t_energy - t2, 4)},
+        "time_split_s": {"finite_elements": round(t_fe - t0, 3),
+                         "energy_method": round(t_energy - t_fe, 3),
+                         "coarser_meshes": round(t3 - t_energy, 3)},
+        "timing": {**ps.stats.get("timing", {}), "energy_method_s": round(t_energy - t_fe, 4)},
         "tolerances": {"newton_rtol": settings.tol, "newton_atol": settings.atol,
                        "gap_tol_over_R": settings.gap_tol},
         "relaxation_gamma_max_over_C10R": gamma_max,
-        "error_bars": ({"coarser_mesh": coarser.mesh, **error_estimate()} if error_bars
-                       else None),
+        "fit": fit_dict(ps.stats.get("fit", {}), R),
+        "error_bars": ({"coarser_meshes": [c.mesh for c, _ in companions], **error_estimate()}
+                       if error_bars else None),
         **checks_dict(ps.stats, R, C10), **cavity_dict(ps.stats, R, C10)}
-    return CaseResult(inp, ps, adhesion, provenance, coarser, coarser_po)
+    (c1, p1), (c2, p2) = companions if companions else ((None, ()), (None, ()))
+    return CaseResult(inp, ps, tuple(adhesion), provenance, c1, pick(p1) if c1 else (),
+                      c2, pick(p2) if c2 else (), tuple(refused))
+
+
+def fit_dict(fit: dict, R_mm: float) -> dict:
+    """How the paths were fitted to the request (solver.request), with units: the evenly
+    meshed radius and arc, the contact radius the loading went to (None: to delta_max),
+    the depth bound (mm), the solves, re-meshings and paths relaxed further."""
+    if not fit:
+        return {}
+    mm = lambda v: None if v is None else round(v * R_mm, 10)
+    return {"even_arc_mm": mm(fit["uniform_arc"]),
+            "loading_target_a_mm": mm(fit["a_stop"]) if fit["a_stop"] is not None
+            and fit["a_stop"] < 1 else None,
+            "delta_bound_mm": mm(fit["delta_bound"]), "solves": fit["solves"],
+            "remeshed": fit["remeshed"], "paths_taken_further": fit["paths_taken_further"]}
 
 
 def cavity_dict(stats: dict, R_mm: float, C10_MPa: float) -> dict:

@@ -9,7 +9,7 @@ import numpy as np
 import xarray as xr
 
 from shell_adhesion.solver import theory
-from shell_adhesion.solver.error_bars import curve_error, error_bar
+from shell_adhesion.solver.error_bars import curve_error, error_bar, observed_order
 from shell_adhesion.solver.scaling import energy_mJ, force_N, length_mm
 
 from .dataset import _CURVES, _PULL_OFF     # the cube's names, units and long names
@@ -41,22 +41,43 @@ def _values(result):
                         dP=F(r.dP_ddelta) / R, V=V(r.V), p=kPa(r.p),
                         ended_by=r.ended_by, centre_lifts=bool(r.centre_lifts),
                         penetration=bool(r.penetration), usable=r.usable)
-                   for r in ps.relaxations] if result.adhesion else []
+                   for r in ps.relaxations] if inp.gamma_J_m2 else []
     adhesion = []
-    coarser = result.coarser_pull_off or (None,) * len(result.adhesion)
-    for (g, eq, po), cpo in zip(result.adhesion, coarser):
-        conv = dict(force=F, length=L)
-        values = {k: float(conv[kind](getattr(po, k))) for k, (_, _, kind) in _PULL_OFF.items()}
-        values["eta"] = theory.eta_of(values["P_star"], R, inp.t_mm, C10, g, inp.material)
+    answered = {g: (eq, po) for g, eq, po in result.adhesion}
+    coarser = dict(zip(answered, result.coarser_pull_off or ()))
+    coarsest = dict(zip(answered, result.coarsest_pull_off or ()))
+    refused = dict(result.refused)
+    conv = dict(force=F, length=L)
+
+    def dimensional(po, g):
+        if po is None:
+            return None
+        v = {k: float(conv[kind](getattr(po, k))) for k, (_, _, kind) in _PULL_OFF.items()}
+        v["eta"] = theory.eta_of(v["P_star"], R, inp.t_mm, C10, g, inp.material)
+        return v
+
+    for g in inp.gamma_J_m2:
+        if g in refused:
+            values = {k: np.nan for k in (*_PULL_OFF, "eta")}
+            values.update(status="out of range", reason=refused[g])
+            empty = np.zeros(0)
+            curve = dict(a=empty, delta=empty, P=empty, stable_fixed_load=empty.astype(bool),
+                         stable_fixed_grips=empty.astype(bool))
+        else:
+            eq, po = answered[g]
+            values = dict(dimensional(po, g), status="ok", reason="")
+            curve = dict(a=L(eq.a), delta=L(eq.delta), P=F(eq.P),
+                         stable_fixed_load=np.asarray(eq.stable_fixed_load, dtype=bool),
+                         stable_fixed_grips=np.asarray(eq.stable_fixed_grips, dtype=bool))
         if cps is not None:
-            c = {k: float(conv[kind](getattr(cpo, k))) if cpo is not None else np.nan
-                 for k, (_, _, kind) in _PULL_OFF.items()}
-            c["eta"] = theory.eta_of(c["P_star"], R, inp.t_mm, C10, g, inp.material)
-            values.update({f"{k}_error": float(error_bar(values[k], c[k])) for k in c})
+            c2, c3 = dimensional(coarser.get(g), g), dimensional(coarsest.get(g), g)
+            for k in (*_PULL_OFF, "eta"):
+                x2 = np.nan if c2 is None else c2[k]
+                x3 = None if c3 is None else c3[k]
+                values[f"{k}_error"] = float(error_bar(values[k], x2, x3))
+                values[f"{k}_order"] = (float(observed_order(values[k], x2, x3))
+                                        if x3 is not None else np.nan)
         values["jkr_P_star"] = theory.jkr_P_star_N(R, g)
-        curve = dict(a=L(eq.a), delta=L(eq.delta), P=F(eq.P),
-                     stable_fixed_load=np.asarray(eq.stable_fixed_load, dtype=bool),
-                     stable_fixed_grips=np.asarray(eq.stable_fixed_grips, dtype=bool))
         adhesion.append((g, values, curve))
     return loading, relaxations, adhesion
 
@@ -102,7 +123,7 @@ def as_dict(result) -> dict:
              "delta_mm": _list(c["delta"]),
              "stable_fixed_load": [bool(v) for v in c["stable_fixed_load"]],
              "stable_fixed_grips": [bool(v) for v in c["stable_fixed_grips"]]}
-            for g, _, c in adhesion]
+            for g, v, c in adhesion if v["status"] == "ok"]
         out["pull_off"] = [_pull_off_dict(g, v) for g, v, _ in adhesion]
     out["provenance"] = result.provenance
     return out
@@ -116,13 +137,20 @@ _JSON_NAMES = {"P_star": ("fixed_load", "P_N"), "delta_star": ("fixed_load", "de
 
 
 def _pull_off_dict(g, v) -> dict:
-    """One gamma's pull-off; with error bars, "<name>_error" beside each "<name>"."""
-    out = {"gamma_J_m2": g, "fixed_load": {}, "fixed_grips": {}}
+    """One gamma's pull-off: its status ("ok", or "out of range" with the reason and no
+    values); with error bars, "<name>_error" beside each "<name>" and "<name>_order", the
+    order observed on three meshes (None: order 1 assumed; solver.error_bars)."""
+    out = {"gamma_J_m2": g, "status": v["status"]}
+    if v["status"] != "ok":
+        out["reason"] = v["reason"]
+        return out
+    out.update(fixed_load={}, fixed_grips={})
     for k, (group, name) in _JSON_NAMES.items():
         where = out[group] if group else out
         where[name] = _num(v[k])
-        if f"{k}_error" in v:
-            where[f"{name}_error"] = _num(v[f"{k}_error"])
+        for extra in ("error", "order"):
+            if f"{k}_{extra}" in v:
+                where[f"{name}_{extra}"] = _num(v[f"{k}_{extra}"])
     out["jkr_P_star_N"] = _num(v["jkr_P_star"])
     return out
 
@@ -212,6 +240,13 @@ def as_dataset(result) -> xr.Dataset:
                 units = _PULL_OFF[k][0] if k in _PULL_OFF else "1"
                 data[f"{k}_error"] = ("gamma", np.array([v[f"{k}_error"] for _, v, _ in adhesion]),
                                       _attrs(units, f"discretisation error estimate of {k}"))
+                data[f"{k}_order"] = ("gamma", np.array([v[f"{k}_order"] for _, v, _ in adhesion]),
+                                      _attrs("1", f"order of convergence of {k} observed on "
+                                                  "three meshes (NaN: order 1 assumed)"))
+        data["status"] = ("gamma", np.array([v["status"] for _, v, _ in adhesion], dtype=object),
+                          _attrs("1", "evaluation status of the gamma (ok or out of range)"))
+        data["reason"] = ("gamma", np.array([v["reason"] for _, v, _ in adhesion], dtype=object),
+                          _attrs("1", "why the gamma is not answered (empty when ok)"))
         data["jkr_P_star"] = ("gamma", np.array([v["jkr_P_star"] for _, v, _ in adhesion]),
                               _attrs("N", "JKR pull-off force of a solid sphere of radius R"))
         E = ("gamma", "point")
@@ -232,11 +267,14 @@ def as_dataset(result) -> xr.Dataset:
                "energy method",
         material_model=inp.material.model,
         comment="P > 0 compression, delta > 0 approach; curves NaN-padded",
-        interface=inp.interface, mesh=inp.mesh, delta_max_mm=inp.delta_max_mm,
+        interface=inp.interface, mesh=inp.mesh,
+        delta_reached_mm=float(loading["delta"][-1]),
         dofs=prov.get("dofs", -1), newton_iterations=prov.get("newton_iterations", -1),
         wall_s=prov.get("wall_s", float("nan")),
         relaxation_gamma_max_over_C10R=prov.get("relaxation_gamma_max_over_C10R",
                                                 float("nan")))
+    if inp.delta_max_mm is not None:
+        attrs["delta_max_mm"] = inp.delta_max_mm
     if closed:
         from .case import cavity_kPa
         attrs.update({f"cavity_{k}": v for k, v in

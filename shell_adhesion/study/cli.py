@@ -87,7 +87,7 @@ def _run_case(ns):
         print(result.to_json())
     else:
         _print_case(result.to_dict())
-    return 0
+    return 1 if result.refused else 0       # every answer is printed; a refusal fails
 
 
 def _pm(group, name, unit=" mm"):
@@ -121,10 +121,19 @@ def _print_case(out):
         print(f"{ld['delta_mm'][i]:12.4f} {ld['P_N'][i]:12.4f} {ld['a_mm'][i]:10.4f}"
               + (f" {ld['V_mm3'][i]:12.2f} {ld['p_kPa'][i]:10.4f}" if cav else ""))
     reached = out["provenance"].get("loading_reached", {})
+    fit = out["provenance"].get("fit") or {}
+    bound = inp["delta_max_mm"] if inp["delta_max_mm"] is not None else fit.get("delta_bound_mm")
     if reached.get("stopped_by"):
         print(f"loading stopped at delta = {reached['delta_reached_mm']:.4f} mm, short of "
-              f"delta_max = {inp['delta_max_mm']:g} mm: {reached['stopped_by']}")
+              f"delta_max = {bound:g} mm: {reached['stopped_by']}")
+    if fit.get("solves", 1) > 1:
+        print(f"paths fitted to the request in {fit['solves']} solves ({fit['remeshed']} "
+              f"re-meshed, {fit['paths_taken_further']} paths relaxed further); evenly "
+              f"meshed out to {fit['even_arc_mm']:.4g} mm of arc")
     for po in out.get("pull_off", []):
+        if po["status"] != "ok":
+            print(f"gamma = {po['gamma_J_m2']:g} J/m^2: {po['status']}: {po['reason']}")
+            continue
         fl, fg = po["fixed_load"], po["fixed_grips"]
         print(f"gamma = {po['gamma_J_m2']:g} J/m^2: fixed load P* = {_pm(fl, 'P_N', ' N')}, "
               f"delta* = {_pm(fl, 'delta_mm')}, a* = {_pm(fl, 'a_mm')}; fixed grips "

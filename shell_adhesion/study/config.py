@@ -19,7 +19,8 @@
                                 #   C01_over_C10, C20_over_C10, C30_over_C10, D1_times_C10
     interface: no_slip          # or frictionless (default no_slip)
     mesh: default               # coarse, default or fine (default default)
-    delta_max_over_R: 0.25      # deepest loading, delta / R (default 0.25)
+    delta_max_over_R: 0.25      # deepest loading, delta / R (default: as deep as the
+                                #   requested pull-offs need, solver.request)
     cavity:                     # a rigid lid closes the cap (default: open)
       mode: pressure            #   open, pressure (prescribed gauge p) or sealed (trapped gas)
       p_kPa: 10                 #   pressure: gauge pressure, kPa (> 0 inflates); may be swept
@@ -126,7 +127,7 @@ class Study:
     grid: dict                      # factor -> tuple of values
     interface: str = "no_slip"
     mesh: str = "default"
-    delta_max_over_R: float = 0.25
+    delta_max_over_R: float = None  # None: as deep as the gammas need (solver.request)
     outputs: Outputs = field(default_factory=Outputs)
     description: str = ""
     source: str = ""                # the file it came from
@@ -376,7 +377,8 @@ def _validate(doc, source, sha256) -> Study:
     mesh = _string(doc.get("mesh", "default"), "mesh")
     if mesh not in MESHES:
         raise StudyError(f"mesh: {mesh!r} must be one of {', '.join(MESHES)}")
-    delta_max = _number(doc.get("delta_max_over_R", 0.25), "delta_max_over_R")
+    delta_max = (_number(doc["delta_max_over_R"], "delta_max_over_R")
+                 if doc.get("delta_max_over_R") is not None else None)
 
     outputs = Outputs()
     if "outputs" in doc:
@@ -569,4 +571,6 @@ def _check_points(study: Study):
         if (t, h) not in seen:
             seen.add((t, h))
             check_cap(t, h, t_place, h_place)
-            check_delta_max(study.delta_max_over_R, h, "delta_max_over_R", h_place)
+            if study.delta_max_over_R is not None:
+                check_delta_max(study.delta_max_over_R, h, "delta_max_over_R", h_place,
+                                t_over_R=t)

@@ -53,9 +53,9 @@ import xarray as xr
 
 from shell_adhesion import solver
 from shell_adhesion.catalogue import write_atomic
-from shell_adhesion.solver import case
+from shell_adhesion.solver import case, request
 from shell_adhesion.solver.cavity import P_ATM_KPA
-from shell_adhesion.solver.error_bars import curve_error, error_bar
+from shell_adhesion.solver.error_bars import curve_error, error_bar, observed_order
 from shell_adhesion.solver.material import NEO_HOOKE
 from shell_adhesion.solver.scaling import energy_mJ, force_N, gamma_hat, length_mm
 from shell_adhesion.solver.theory import eta_of
@@ -63,7 +63,7 @@ from shell_adhesion.solver.theory import eta_of
 from .config import CAVITY_FACTORS, CAVITY_KEYS, COEFFICIENTS, FACTORS, IN_MPA, KEYS, \
     Outputs
 from .keys import solver_source_sha256
-from .plan import LADDER, Plan
+from .plan import Plan
 
 DIMS = ("C10", "t_over_R", "h_over_R", "gamma")
 FACTOR_OF_DIM = dict(zip(DIMS, FACTORS))     # dimension -> the study file's name
@@ -300,14 +300,23 @@ def _short(key) -> tuple:
     return key[:2] + tuple(key[3:])
 
 
-def _errors(values, coarser) -> dict:
-    """`<name>_error` of each pull-off value and eta from the coarser mesh's values."""
-    return {f"{k}_error": float(error_bar(v, coarser[k])) if coarser else np.nan
-            for k, v in values.items()}
+def _errors(values, coarser, coarsest=None) -> dict:
+    """`<name>_error` of each pull-off value and eta from the next coarser mesh's values
+    (and the one after it's: Richardson where the three converge), and `<name>_order`, the
+    order observed on the three meshes (NaN where the two-mesh rule of order 1 is used:
+    solver.error_bars)."""
+    out = {}
+    for k, v in values.items():
+        c3 = coarsest[k] if coarsest else None
+        out[f"{k}_error"] = float(error_bar(v, coarser[k], c3)) if coarser else np.nan
+        out[f"{k}_order"] = (float(observed_order(v, coarser[k], c3)) if coarser and coarsest
+                             else np.nan)
+    return out
 
 
 def _build(plan: Plan, served: dict, failed: dict, history: str, material) -> xr.Dataset:
-    coarser = {k[:2]: v for k, v in served.items() if len(k) == 3}
+    coarser = {k[:2]: v for k, v in served.items() if len(k) == 3 and k[2] == "coarser"}
+    coarsest = {k[:2]: v for k, v in served.items() if len(k) == 3 and k[2] == "coarsest"}
     served = {k: v for k, v in served.items() if len(k) == 2}
     failed = {k: v for k, v in failed.items() if len(k) == 2}
     study = plan.study
@@ -322,12 +331,20 @@ def _build(plan: Plan, served: dict, failed: dict, history: str, material) -> xr
             surfaces[th] = ps.surface()
         except Exception as e:      # too few usable paths to build G at all
             surface_errors[th] = f"energy surface: {type(e).__name__}: {e}"
-    coarser_surfaces = {}
-    for th, (_, ps) in coarser.items():
+    companion_surfaces = {}
+    for level, sets in (("coarser", coarser), ("coarsest", coarsest)):
+        for th, (_, ps) in sets.items():
+            try:
+                companion_surfaces[level, th] = ps.surface()
+            except Exception:           # no error bars (of that level) for this shell
+                pass
+
+    def companion(level, sets, th, C10, gamma, t):
         try:
-            coarser_surfaces[th] = ps.surface()
-        except Exception:           # no error bars for this shell
-            pass
+            return _evaluate(sets[th][1], companion_surfaces[level, th], C10, R, t, gamma,
+                             material)[0]
+        except (KeyError, ValueError):   # not served, or out of its range
+            return None
 
     status = np.full(shape, "not requested", dtype=object)
     reason = np.full(shape, "", dtype=object)
@@ -345,12 +362,9 @@ def _build(plan: Plan, served: dict, failed: dict, history: str, material) -> xr
                                        material)
                 status[i] = "ok"
                 if plan.study.error_bars:
-                    try:
-                        c = _evaluate(coarser[t, h][1], coarser_surfaces[t, h], C10, R, t,
-                                      gamma, material)[0]
-                    except (KeyError, ValueError):   # not served, or out of its range
-                        c = None
-                    results[i][0].update(_errors(results[i][0], c))
+                    results[i][0].update(_errors(
+                        results[i][0], companion("coarser", coarser, (t, h), C10, gamma, t),
+                        companion("coarsest", coarsest, (t, h), C10, gamma, t)))
             except ValueError as e:     # solver.energy.OutOfRange and gamma > gamma_max
                 status[i], reason[i] = "out of range", str(e)
 
@@ -358,7 +372,8 @@ def _build(plan: Plan, served: dict, failed: dict, history: str, material) -> xr
     n_load = max([len(ps.loading_delta) for _, ps in served.values()], default=0)
     names = (*_PULL_OFF, "eta")
     values = {k: np.full(shape, np.nan)
-              for k in names + (tuple(f"{n}_error" for n in names) if study.error_bars else ())}
+              for k in names + (tuple(f"{n}_{e}" for n in names for e in ("error", "order"))
+                                if study.error_bars else ())}
     curves = {k: np.full(shape + (n_point,), np.nan) for k in _CURVES}
     inverted = np.full(shape, np.nan)
     for i, (v, c) in results.items():
@@ -376,8 +391,11 @@ def _build(plan: Plan, served: dict, failed: dict, history: str, material) -> xr
         for k in names:
             units = _PULL_OFF[k][0] if k in _PULL_OFF else "1"
             data[f"{k}_error"] = (DIMS, values[f"{k}_error"], _attrs(
-                units, f"discretisation error estimate of {k} (next coarser mesh, "
+                units, f"discretisation error estimate of {k} (the next two coarser meshes, "
                        "solver.error_bars; NaN: not available)"))
+            data[f"{k}_order"] = (DIMS, values[f"{k}_order"], _attrs(
+                "1", f"order of convergence of {k} observed on three meshes, used by its "
+                     "error estimate (NaN: not observed, order 1 assumed with factor 3)"))
     data["status"] = (DIMS, status, _attrs(
         "1", "evaluation status of the point", comment="one of: " + "; ".join(STATUS)))
     data["reason"] = (DIMS, reason, _attrs("1", "why a point is not ok (empty when ok)"))
@@ -637,7 +655,7 @@ def _global_attrs(plan: Plan, history: str) -> dict:
                 "'not requested'. P > 0 compression, delta > 0 approach.",
         **study_attrs(study.as_dict()),
         study_file=study.source, study_sha256=study.sha256,
-        gamma_max_ladder=", ".join(str(m) for m in LADDER) + " x 10^k",
+        gamma_max_ladder=", ".join(str(m) for m in request.LADDER) + " x 10^k",
         solver_version=solver.__version__, solver_source_sha256=solver_source_sha256(),
         **{f"solver_{k}": int(v) if isinstance(v, bool) else v for k, v in asdict(s).items()},
         relaxation_G_SAFETY=case.G_SAFETY,
@@ -657,7 +675,7 @@ def study_attrs(study: dict) -> dict:
     """Netcdf attributes holding a study dictionary (the study file's schema) as plain
     numbers and strings: study_name, R_mm, base_C10_MPa, sweep_gamma_J_m2 (array), ...,
     output_loading_curves (1 or 0)."""
-    out = {a: study[k] for k, a in _SCALAR_KEYS.items() if k in study}
+    out = {a: study[k] for k, a in _SCALAR_KEYS.items() if study.get(k) is not None}
     if "error_bars" in out:
         out["error_bars"] = int(out["error_bars"])   # netCDF has no booleans
     for group, prefix in _GROUPS.items():

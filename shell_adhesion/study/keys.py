@@ -20,8 +20,9 @@ from pathlib import Path
 
 from shell_adhesion import solver
 from shell_adhesion.catalogue import fingerprint
-from shell_adhesion.solver import case
+from shell_adhesion.solver import case, request
 from shell_adhesion.solver.cavity import OPEN, Cavity
+from shell_adhesion.solver.geometry import Cap, delta_bound
 from shell_adhesion.solver.material import NEO_HOOKE, Material
 from shell_adhesion.solver.mesh import mesh_spec
 from shell_adhesion.solver.path import Settings, State
@@ -40,7 +41,13 @@ def solver_source_sha256() -> str:
 def pathset_key(t_over_R, h_over_R, interface, mesh, delta_max_over_R, gamma_max_hat,
                 settings: Settings = None, material: Material = NEO_HOOKE,
                 cavity: Cavity = OPEN) -> dict:
-    """Key of the FE path set of one dimensionless shell (validated names and values)."""
+    """Key of the FE path set of one dimensionless shell (validated names and values).
+
+    The set is fitted to its request (solver.request.Request.serving): the ladder of gammas
+    up to gamma_max_hat and delta_max / R (None: as deep as they need, within
+    solver.geometry.delta_bound, which is then the key's delta_max_over_R), under the
+    request's rules; the even zone and the loading depth it ends with are stored with it,
+    not keyed."""
     settings = settings if settings is not None else Settings()
     key = {
         "kind": "shell-adhesion path set",
@@ -50,8 +57,12 @@ def pathset_key(t_over_R, h_over_R, interface, mesh, delta_max_over_R, gamma_max
         "interface": str(interface),
         "mesh": str(mesh),
         "mesh_spec": asdict(mesh_spec(mesh)),
-        "delta_max_over_R": float(delta_max_over_R),
+        "delta_max_over_R": float(delta_bound(Cap(t_over_R, h_over_R))
+                                  if delta_max_over_R is None else delta_max_over_R),
         "gamma_max_hat": float(gamma_max_hat),
+        # in the family too: a set fitted to another depth never serves
+        "request": {"delta_max_over_R": "auto" if delta_max_over_R is None
+                    else float(delta_max_over_R), "rules": request.rules()},
         "settings": asdict(settings),
         "relaxation_rule": {"G_SAFETY": case.G_SAFETY},
         "version": solver.__version__,
@@ -64,8 +75,11 @@ def pathset_key(t_over_R, h_over_R, interface, mesh, delta_max_over_R, gamma_max
     return key
 
 
-def relaxation_part(start: State, views: bool) -> str:
-    """Name of the relaxation path from the loaded state `start` (with its views or not)
-    among the parts of a path set: a fingerprint of the start state."""
+def relaxation_part(start: State, views: bool, reach: float = 1.0,
+                    uniform: float = None) -> str:
+    """Name of the relaxation path from the loaded state `start` (with its views or not,
+    relaxed to `reach`, on the mesh even out to `uniform` of arc) among the parts of a path
+    set: a fingerprint of the start state and of those."""
     return fingerprint({"delta": start.delta, "a": start.a, "held": list(start.held),
-                        "views": bool(views)})
+                        "views": bool(views), "reach": float(reach),
+                        "uniform": None if uniform is None else float(uniform)})

@@ -2,11 +2,12 @@
 
 With an incompressible neo-Hookean solid, C10, R and gamma only rescale the results, so a
 study needs one set of FE paths per distinct (t/R, h/R) (the interface, mesh and
-delta_max / R are fixed per study).  The paths of a shell must serve the largest
-gamma / (C10 R) asked of it; that value is rounded up to the ladder 1, 2, 5 x 10^k, so
-studies with nearby values share their paths.  The catalogue may serve a key with a set
-that reaches further (larger delta_max or gamma_max); `restrict` cuts such a set back to
-the requested delta_max, so the results do not depend on what else the catalogue holds.
+delta_max / R are fixed per study).  The paths of a shell are fitted to what the study asks
+of it (solver.request): they serve gamma / (C10 R) up to the largest its points ask, rounded
+up to the ladder 1, 1.5, 2, 3, 5, 7 x 10^k (so that another C10, R or a nearby gamma shares
+them), to the study's depth.  Only a set fitted to the same
+request serves it from the catalogue, so the results do not depend on what else the
+catalogue holds.
 With error bars (the study's default), each shell has a companion on the next coarser mesh
 (`Plan.error_shells`): a set of its own, keyed and stored like any other.
 
@@ -28,33 +29,16 @@ from dataclasses import dataclass, replace
 import math
 
 from shell_adhesion.catalogue import fingerprint
-from shell_adhesion.solver.case import PathSet
 from shell_adhesion.solver.cavity import OPEN, Cavity
 from shell_adhesion.solver.geometry import shown
 from shell_adhesion.solver.material import NEO_HOOKE, Material
 from shell_adhesion.solver.mesh import coarser_mesh
 from shell_adhesion.solver.path import Settings
+from shell_adhesion.solver.request import Request, gamma_bucket
 from shell_adhesion.solver.scaling import gamma_hat
 
 from .config import FACTORS, Study, cavity_at, material_of, requested
 from .keys import pathset_key
-
-LADDER = (1, 2, 5)
-_REL_TOL = 1e-9
-
-
-def gamma_max_bucket(g: float) -> float:
-    """The smallest value of the ladder 1, 2, 5 x 10^k that is >= g (to 1e-9 relative)."""
-    if not g > 0:
-        raise ValueError(f"gamma/(C10 R) = {shown(g)} must be > 0")
-    k = math.floor(math.log10(g)) - 1
-    while True:
-        for m in LADDER:
-            v = float(f"{m}e{k}")
-            if v >= g * (1 - _REL_TOL):
-                return v
-        k += 1
-
 
 @dataclass(frozen=True, eq=False)
 class Shell:
@@ -72,6 +56,13 @@ class Shell:
     def gamma_max_hat(self) -> float:
         return self.key["gamma_max_hat"]
 
+    @property
+    def request(self) -> Request:
+        """What its paths must answer (solver.request): the ladder of gammas up to
+        gamma_max_hat, to the study's delta_max (None: as deep as they need)."""
+        delta_max = self.key["request"]["delta_max_over_R"]
+        return Request.serving(self.gamma_max_hat, None if delta_max == "auto" else delta_max)
+
 
 @dataclass(frozen=True, eq=False)
 class Plan:
@@ -87,11 +78,12 @@ class Plan:
     cavities: dict = None       # closed cavity: point -> Cavity (None: open)
     cavity_axes: dict = None    # swept cavity parameter (p_kPa) -> sorted tuple of values
     error_shells: tuple = ()    # each shell on the next coarser mesh (error bars), same order
+    third_shells: tuple = ()    # and on the one after it (Richardson, solver.error_bars)
 
     @property
     def all_shells(self) -> tuple:
         """The FE path sets to serve: the shells, then their error-bar companions."""
-        return self.shells + self.error_shells
+        return self.shells + self.error_shells + self.third_shells
 
     def shell(self, t_over_R, h_over_R, material: Material = None) -> Shell:
         for s in self.shells:
@@ -108,8 +100,9 @@ class Plan:
         points = tuple(p[:n] for p in self.points if tuple(p[n:]) == tuple(values))
         shells = tuple(s for s in self.shells if s.material == m)
         errors = tuple(s for s in self.error_shells if s.material == m)
+        third = tuple(s for s in self.third_shells if s.material == m)
         return replace(self, points=points, shells=shells, ratio_axes=None, materials=None,
-                       error_shells=errors)
+                       error_shells=errors, third_shells=third)
 
     def for_cavity(self, C10_MPa, values: tuple = ()) -> "Plan":
         """The part of a closed-cavity plan at one C10 and swept cavity `values` (one per
@@ -122,8 +115,10 @@ class Plan:
                                     if p[0] == C10_MPa and tuple(p[n:]) == tuple(values))]
         shells = tuple(s for s in self.shells if s.cavity == cavity)
         errors = tuple(s for s in self.error_shells if s.cavity == cavity)
+        third = tuple(s for s in self.third_shells if s.cavity == cavity)
         return replace(self, points=points, shells=shells, cavities=None, cavity_axes=None,
-                       axes={**self.axes, "C10_MPa": (C10_MPa,)}, error_shells=errors)
+                       axes={**self.axes, "C10_MPa": (C10_MPa,)}, error_shells=errors,
+                       third_shells=third)
 
     def cavity_groups(self) -> list:
         """The (C10, swept cavity values) of a closed-cavity plan, sorted."""
@@ -139,10 +134,12 @@ def shell_key(s: Shell) -> tuple:
 
 
 def served_key(s: Shell, plan: Plan) -> tuple:
-    """Key of a served set in the run's `served` map: `shell_key`, and "coarser" after it
-    for an error-bar companion (study.dataset.build reads it)."""
+    """Key of a served set in the run's `served` map: `shell_key`, and "coarser" or
+    "coarsest" after it for an error-bar companion (study.dataset.build reads it)."""
     key = shell_key(s)
-    return key + ("coarser",) if s in plan.error_shells else key
+    if s in plan.error_shells:
+        return key + ("coarser",)
+    return key + ("coarsest",) if s in plan.third_shells else key
 
 
 def make_plan(study: Study, settings: Settings = Settings(),
@@ -172,41 +169,24 @@ def make_plan(study: Study, settings: Settings = Settings(),
         g = gamma_hat(gamma, C10, study.R_mm)
         at = (t, h, p[4:4 + len(swept)], cavities.get(p, OPEN))
         need[at] = max(need.get(at, 0.0), g)
-    shells, errors = [], []
+    shells, errors, third = [], [], []
     for (t, h, values, cavity), g in sorted(
             need.items(), key=lambda kv: kv[0][:3] + (tuple(kv[0][3].as_dict().values()),)):
         m = solids[values]
-        key = pathset_key(t, h, study.interface, study.mesh, study.delta_max_over_R,
-                          gamma_max_bucket(g), settings, m, cavity)
-        shells.append(Shell(t, h, g, key, fingerprint(key), m, cavity))
-        if study.error_bars:    # the same shell on the next coarser mesh: a set of its own
-            key = pathset_key(t, h, study.interface, coarser_mesh(study.mesh),
-                              study.delta_max_over_R, gamma_max_bucket(g), settings, m, cavity)
-            errors.append(Shell(t, h, g, key, fingerprint(key), m, cavity))
+
+        def shell(mesh):
+            key = pathset_key(t, h, study.interface, mesh, study.delta_max_over_R,
+                              gamma_bucket(g), settings, m, cavity)
+            return Shell(t, h, g, key, fingerprint(key), m, cavity)
+
+        shells.append(shell(study.mesh))
+        if study.error_bars:    # the same shell on the next two coarser meshes: sets of their own
+            errors.append(shell(coarser_mesh(study.mesh)))
+            third.append(shell(coarser_mesh(coarser_mesh(study.mesh))))
     ratio_axes = ({r: tuple(sorted({p[4 + j] for p in points})) for j, r in enumerate(swept)}
                   if swept else None)
     cavity_axes = ({c: tuple(sorted({p[4 + len(swept) + j] for p in points}))
                     for j, c in enumerate(study.swept_cavity)} or None)
     return Plan(study, axes, tuple(points), tuple(shells), settings, ratio_axes,
                 solids if swept else None, cavities=cavities or None, cavity_axes=cavity_axes,
-                error_shells=tuple(errors))
-
-
-def restrict(ps: PathSet, delta_max: float) -> PathSet:
-    """The part of a path set a run to `delta_max` computes: loading states and
-    relaxation starts with delta <= delta_max (identical to a run that stops there,
-    apart from that run's last, clipped loading step), and the views inside that range
-    (a run that stops there keeps others: views are illustrations, not results)."""
-    if ps.delta_max <= delta_max * (1 + _REL_TOL):
-        return ps
-    lim = delta_max * (1 + _REL_TOL)
-    keep = ps.loading_delta <= lim
-    relaxations = tuple(r for r in ps.relaxations if r.delta[0] <= lim)
-    held = {r.a for r in relaxations}
-    views = tuple(v for v in ps.views
-                  if (v.delta <= lim if v.stage == "loading" else v.a in held))
-    return replace(ps, delta_max=delta_max, loading_delta=ps.loading_delta[keep],
-                   loading_P=ps.loading_P[keep], loading_a=ps.loading_a[keep],
-                   loading_U=ps.loading_U[keep], loading_joined=ps.loading_joined[keep],
-                   loading_V=ps.loading_V[keep], loading_p=ps.loading_p[keep],
-                   relaxations=relaxations, views=views)
+                error_shells=tuple(errors), third_shells=tuple(third))

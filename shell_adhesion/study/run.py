@@ -31,7 +31,9 @@ from shell_adhesion.catalogue.atomic import clean_temporaries
 from shell_adhesion.catalogue.store import INDEX
 from shell_adhesion.solver.case import (cavity_lift, loading_views, pathset_of,
                                         relaxation_starts, relaxation_task, solve_loading,
-                                        timing_stats)
+                                        start_key, timing_stats)
+from shell_adhesion.solver.geometry import Cap
+from shell_adhesion.solver.request import fit_stats, initial_fit, next_fit
 from shell_adhesion.solver.cavity import OPEN
 from shell_adhesion.solver.material import NEO_HOOKE
 from shell_adhesion.solver.path import Settings
@@ -41,7 +43,7 @@ from shell_adhesion.solver.pathset_dataset import (from_dataset, relaxation_from
 from . import dataset, interrupt
 from .config import StudyError, load_study, validate
 from .keys import relaxation_part, solver_source_sha256
-from .plan import Plan, Shell, make_plan, restrict, served_key
+from .plan import Plan, Shell, make_plan, served_key
 from .products import Products, kept_products, record_products, recorded_inputs, write_products
 from .progress import Progress
 
@@ -104,16 +106,17 @@ def _deadline(timeout_s, what):
 
 
 def loading_task(t, h, interface, mesh, delta_max, settings, source_sha256=None,
-                 material=NEO_HOOKE, timeout_s=None, cavity=OPEN):
-    """Loading path of one shell of `material` and `cavity`: (loading without displacement
-    fields, relaxation starts, info, loading views); a closed cavity's info holds
-    `cavity_lift` (solver.case.cavity_lift), which its relaxation tasks need.  TaskTimeout
-    past `timeout_s` seconds."""
+                 material=NEO_HOOKE, timeout_s=None, cavity=OPEN, uniform=None, a_stop=None):
+    """Loading path of one shell of `material` and `cavity` on the mesh even out to
+    `uniform` of arc, to delta_max or the contact radius `a_stop` (solver.request):
+    (loading without displacement fields, relaxation starts, info, loading views); a closed
+    cavity's info holds `cavity_lift` (solver.case.cavity_lift), which its relaxation tasks
+    need.  TaskTimeout past `timeout_s` seconds."""
     _check_source(source_sha256)
     t0 = time.perf_counter()
     d, loading = solve_loading(t, h, interface, mesh, delta_max, settings,
                                _deadline(timeout_s, "the loading"), material, cavity=cavity,
-                               stop_at_limit=True)
+                               stop_at_limit=True, uniform=uniform, a_stop=a_stop)
     starts = relaxation_starts(loading, d.capmesh)
     light = replace(loading, states=tuple(replace(s, x=s.x[:0]) for s in loading.states))
     info = dict(dofs=int(d.ndof), elements=int(d.capmesh.mesh.nelements),
@@ -124,14 +127,17 @@ def loading_task(t, h, interface, mesh, delta_max, settings, source_sha256=None,
 
 
 def relax_task(t, h, interface, mesh, start, gamma_max, settings, source_sha256=None,
-               views=False, material=NEO_HOOKE, timeout_s=None, cavity=OPEN, lift=0.0):
+               views=False, material=NEO_HOOKE, timeout_s=None, cavity=OPEN, lift=0.0,
+               uniform=None, reach=1.0):
     """One relaxation path: (Relaxation, seconds); `views` keeps its profiles; a closed
-    `cavity` needs its loading's `lift`.  TaskTimeout past `timeout_s` seconds."""
+    `cavity` needs its loading's `lift`; `uniform` and `reach` as the shell's fit says
+    (solver.request).  TaskTimeout past `timeout_s` seconds."""
     _check_source(source_sha256)
     t0 = time.perf_counter()
     r = relaxation_task(t, h, interface, mesh, start, gamma_max, settings, views,
                         material=material, cavity=cavity, lift=lift,
-                        progress=_deadline(timeout_s, "a relaxation path"))
+                        progress=_deadline(timeout_s, "a relaxation path"), uniform=uniform,
+                        reach=reach)
     return r, time.perf_counter() - t0
 
 
@@ -243,14 +249,18 @@ def _has_bokeh() -> bool:
 
 @dataclass
 class _Job:
-    """The tasks of one path set in flight."""
+    """The tasks of one path set in flight, fitted to its request (solver.request): each
+    solve of the fit is a loading task and the relaxation tasks of its new starts."""
 
     shell: Shell
     t0: float
+    fit: object = None          # solver.request.Fit of the solve in flight
     loading: object = None
     info: dict = None
     views: tuple = ()
+    starts: tuple = ()
     relaxations: list = None
+    known: dict = field(default_factory=dict)   # start_key -> Relaxation, on this mesh
     seconds: float = 0.0
     remaining: int = 0
     done: bool = False
@@ -280,19 +290,28 @@ def _kept(tally: Tally, cat) -> str:
 def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: Progress,
             external: bool = False):
     """Compute the path sets of `shells` on `client`, storing each relaxation path (a part)
-    and each complete set in `cat` as it arrives.  SchedulerLost if the scheduler of an
+    and each complete set in `cat` as it arrives.  Each set is fitted to its shell's
+    request (solver.request.next_fit: a deeper loading, a wider even zone or paths relaxed
+    further, each bounded) before it is stored.  SchedulerLost if the scheduler of an
     `external` client stops answering."""
     from distributed import wait
     st = plan.study
     owner = {}                  # future -> (job, relaxation index or None)
     pending = set()
-    for s in shells:
+
+    def load(job):
+        s, fit = job.shell, job.fit
         f = client.submit(loading_task, s.t_over_R, s.h_over_R, st.interface, s.key["mesh"],
-                          st.delta_max_over_R, plan.settings, s.key["solver_source"],
+                          fit.delta_max, plan.settings, s.key["solver_source"],
                           s.material, st.task_timeout_s, pure=False, cavity=s.cavity,
+                          uniform=fit.uniform, a_stop=fit.a_stop,
                           key=f"loading-{s.fingerprint[:12]}-{uuid.uuid4().hex[:8]}")
-        owner[f] = (_Job(s, time.perf_counter()), None)
+        owner[f] = (job, None)
         pending.add(f)
+
+    for s in shells:
+        job = _Job(s, time.perf_counter(), initial_fit(Cap(s.t_over_R, s.h_over_R), s.request))
+        load(job)
     n_shells = len(shells)
     shells_done = 0
     progress.start("loading paths")
@@ -321,7 +340,7 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
                            study=st.name)
         close(job)
 
-    def finish(job):
+    def pathset(job):
         s = job.shell
         stats = dict(job.info)
         timer = job.loading.timer
@@ -329,16 +348,28 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
                      loading_newton_iterations=timer.newton_iterations,
                      relaxation_newton_iterations=sum(r.newton_iterations for r in job.relaxations),
                      assembly_s=timer.assembly, linear_solve_s=timer.factor + timer.solve,
-                     relaxation_s=job.seconds, timing=timing_stats(timer, job.relaxations))
-        ps = pathset_of(s.t_over_R, s.h_over_R, st.interface, s.key["mesh"],
-                        st.delta_max_over_R, s.gamma_max_hat, job.loading, job.relaxations,
-                        stats, job.views, cavity=s.cavity,
-                        lift=job.info.get("cavity_lift", 0.0))
+                     relaxation_s=job.seconds, timing=timing_stats(timer, job.relaxations),
+                     fit=fit_stats(job.fit))
+        return pathset_of(s.t_over_R, s.h_over_R, st.interface, s.key["mesh"],
+                          job.fit.delta_max, s.gamma_max_hat, job.loading, job.relaxations,
+                          stats, job.views, cavity=s.cavity,
+                          lift=job.info.get("cavity_lift", 0.0), uniform=job.fit.uniform)
+
+    def finish(job):
+        s = job.shell
+        ps = pathset(job)
+        following = next_fit(ps, job.fit, s.request)
+        if following is not None:           # fit the paths further: solve again
+            if following.uniform != job.fit.uniform:
+                job.known = {}
+            job.fit = following
+            load(job)
+            return
         summary = dict(relaxations=len(ps.relaxations), loading_states=len(ps.loading_delta),
-                       newton_iterations=stats["loading_newton_iterations"]
-                       + stats["relaxation_newton_iterations"],
-                       loading_s=stats["loading_s"], relaxation_s=stats["relaxation_s"],
-                       stats=stats)
+                       newton_iterations=ps.stats["loading_newton_iterations"]
+                       + ps.stats["relaxation_newton_iterations"],
+                       loading_s=ps.stats["loading_s"], relaxation_s=ps.stats["relaxation_s"],
+                       stats=ps.stats)
         cat.store(s.key, to_dataset(ps), summary, {"wall_s": time.perf_counter() - job.t0},
                   study=st.name)
         tally.computed[s.fingerprint] = ps
@@ -349,21 +380,28 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
         if job.done:
             return
         if f.status == "error":
-            stage = "loading" if k is None else f"relaxation {k + 1} of {len(job.relaxations)}"
+            stage = "loading" if k is None else f"relaxation {k[0] + 1} of {len(job.relaxations)}"
             if k is None:
                 progress.update("loading paths", advance=1)
             fail(job, _reason(stage, f.exception()))
             return
-        s = job.shell
+        s, fit = job.shell, job.fit
         if k is None:
-            job.loading, starts, job.info, job.views = f.result()
-            tally.loadings += 1
-            progress.update("loading paths", advance=1)
+            first = job.loading is None
+            job.loading, job.starts, job.info, job.views = f.result()
+            if first:
+                tally.loadings += 1
+                progress.update("loading paths", advance=1)
             held = cat.parts(s.key)
-            job.relaxations = [None] * len(starts)
-            for i, start in enumerate(starts):
-                views = i == len(starts) - 1
-                part = relaxation_part(start, views)
+            job.relaxations = [None] * len(job.starts)
+            last = len(job.starts) - 1
+            for i, start in enumerate(job.starts):
+                reach, views = fit.reach_of(start), i == last
+                r = job.known.get(start_key(start, reach))
+                if r is not None and (not views or r.views):
+                    job.relaxations[i] = replace(r, views=()) if r.views and not views else r
+                    continue
+                part = relaxation_part(start, views, reach, fit.uniform)
                 if part in held:
                     try:
                         job.relaxations[i], seconds = relaxation_from_dataset(held[part])
@@ -371,21 +409,24 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
                         pass
                     else:
                         job.seconds += seconds
+                        job.known[start_key(start, reach)] = job.relaxations[i]
                         tally.relaxations_reused += 1
                         continue
                 g = client.submit(relax_task, s.t_over_R, s.h_over_R, st.interface, s.key["mesh"],
                                   start, s.gamma_max_hat, plan.settings,
                                   s.key["solver_source"], views, s.material,
                                   st.task_timeout_s, pure=False, cavity=s.cavity,
-                                  lift=job.info.get("cavity_lift", 0.0),
+                                  lift=job.info.get("cavity_lift", 0.0), uniform=fit.uniform,
+                                  reach=reach,
                                   key=f"relax-{s.fingerprint[:12]}-{i}-{uuid.uuid4().hex[:8]}")
-                owner[g] = (job, (i, part))
+                owner[g] = (job, (i, part, reach))
                 pending.add(g)
                 job.remaining += 1
         else:
-            i, part = k
+            i, part, reach = k
             r, seconds = f.result()
             job.relaxations[i] = r
+            job.known[start_key(job.starts[i], reach)] = r
             job.seconds += seconds
             job.remaining -= 1
             cat.store_part(s.key, part, relaxation_to_dataset(r, seconds), seconds)
@@ -531,8 +572,7 @@ def _execute(plan, out_dir, output, catalogue, scheduler, client, show, workers,
                 missing.append(s)
             else:
                 entry, ds = hit
-                served[served_key(s, plan)] = (
-                    entry.fingerprint, restrict(from_dataset(ds), study.delta_max_over_R))
+                served[served_key(s, plan)] = (entry.fingerprint, from_dataset(ds))
                 reused.append(s.fingerprint)
         progress = Progress([("loading paths", len(missing), "shells"),
                              ("relaxation paths", len(missing), "shells"),

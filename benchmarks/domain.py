@@ -1,13 +1,18 @@
-"""Benchmark: a map of the supported domain over t/R x h/R (issue 10, item 8).
+"""Benchmark: the supported domain answered, point by point (issue 21, item 8).
 
-Each cell solves one shell (no_slip, `--mesh`, delta_max `--delta-max` R, paths serving
-gamma/(C10 R) up to 1.25 x `--gamma`) and the same shell on the next coarser mesh, in a
-subprocess with a wall-time limit, and records: solved or refused (why), P* / (C10 R^2) at
-`--gamma` with its error bar (solver.error_bars), the worst pointwise J of the loading, the
-contact-zone inversion, how far the loading got, and the wall time.  Draws the map to
-docs/figures/domain_map.png and prints one line per cell and the JSON of all cells.
+One `shell_adhesion.solve_case` per shell, as a user calls it (R = 20 mm, C10 = 0.3 MPa,
+default settings: the even zone, the loading depth and the relaxations fitted to the
+request, error bars from the next two coarser meshes), over t/R x h/R (the lowest h/R the
+domain allows, 0.5 and 1) with gamma / (C10 R) = 0.001, 0.005, 0.015 and 0.03 in one call,
+each shell in a subprocess with a wall-time limit.  Records, per gamma, the answer (P*
+with its error bar, a*, delta*) or the refusal with its reason, and per shell the dofs,
+the fit (solves, re-meshings, even zone, depth reached) and the wall time.  Prints one
+line per point and the counts, writes the cells as JSON and draws the map to
+docs/figures/domain_map.png.
 
-Run: python benchmarks/domain.py [--mesh coarse] [--delta-max 0.05] [--timeout 600]
+Run: python benchmarks/domain.py [--mesh default] [--timeout 3600] [--out cells.json]
+     python benchmarks/domain.py --redraw cells.json      (the figure from a run)
+About 1.5 hours on 2 cores on the default mesh.
 """
 import argparse
 import json
@@ -16,130 +21,142 @@ import subprocess
 import sys
 import time
 
-import numpy as np
-
 T_OVER_R = (0.02, 0.05, 0.1, 0.2, 0.5, 1.0)
-H_OVER_R = (0.2, 0.4, 0.6, 0.8, 1.0)
+H_LEVELS = ("lowest", 0.5, 1.0)
+GAMMA_HATS = (0.001, 0.005, 0.015, 0.03)
+R_MM, C10_MPA = 20.0, 0.3
 FIGURE = Path(__file__).resolve().parents[1] / "docs" / "figures" / "domain_map.png"
 
 CELL = """
 import json, sys, time
-import numpy as np
-from shell_adhesion.solver.case import solve_paths
-from shell_adhesion.solver.error_bars import error_bar
-from shell_adhesion.solver.geometry import InputError
-from shell_adhesion.solver.mesh import coarser_mesh
-t, h, mesh, delta_max, gamma = (float(sys.argv[1]), float(sys.argv[2]), sys.argv[3],
-                                float(sys.argv[4]), float(sys.argv[5]))
+import shell_adhesion as sa
+t, h, mesh = float(sys.argv[1]), float(sys.argv[2]), sys.argv[3]
+gammas = json.loads(sys.argv[4])
+R, C10 = %r, %r
 out = dict(t=t, h=h)
 t0 = time.perf_counter()
 try:
-    ps, _, _ = solve_paths(t, h, "no_slip", mesh, delta_max, 1.25 * gamma)
-    st = ps.stats
-    out.update(J_min=st["J_min"], J_max=st["J_max"], delta_reached=st["delta_reached"],
-               stopped_by=st["loading_stopped_by"], inversion=st["inversion_stage"],
-               inverted_paths=st["inverted_paths"])
-    P = ps.pull_off(gamma)[1].P_star
-    out.update(status="solved", P_star=P)
-    try:
-        c, _, _ = solve_paths(t, h, "no_slip", coarser_mesh(mesh), delta_max, 1.25 * gamma)
-        out["P_star_error"] = float(error_bar(P, c.pull_off(gamma)[1].P_star))
-    except Exception as e:
-        out["P_star_error"] = None
-        out["error_reason"] = f"{type(e).__name__}: {e}"[:200]
-except InputError as e:
-    out.update(status="refused (domain)", reason=str(e)[:200])
+    res = sa.solve_case(R, t * R, h * R, C10, [g * C10 * R * 1e3 for g in gammas], mesh=mesh,
+                        progress=False)
+except ValueError as e:
+    out.update(status="refused (input)", reason=str(e))
 except Exception as e:
-    kind = type(e).__name__
-    if kind == "OutOfRange":     # which check refused the pull-off (solver.case.PathSet.pull_off)
-        text = str(e)
-        kind = ("graded zone" if "elements grow" in text else "G short" if "bridged" in text
-                else "not bracketed")
-    out.update(status=f"refused ({kind})", reason=str(e)[:200])
+    out.update(status="failed", reason=f"{type(e).__name__}: {e}")
+else:
+    d = res.to_dict()
+    p = d["provenance"]
+    out.update(status="solved", dofs=p["dofs"], fit=p["fit"],
+               delta_reached_mm=p["loading_reached"]["delta_reached_mm"],
+               stopped_by=p["loading_reached"]["stopped_by"], J=p["element_quality"],
+               inverted_paths=p["inversion"]["inverted_relaxation_paths"], points=[])
+    for g, po in zip(gammas, d["pull_off"]):
+        point = dict(gamma_hat=g, status=po["status"], reason=po.get("reason"))
+        if po["status"] == "ok":
+            fl, fg = po["fixed_load"], po["fixed_grips"]
+            point.update(P_star_N=fl["P_N"], P_star_N_error=fl.get("P_N_error"),
+                         P_star_order=fl.get("P_N_order"), a_star_mm=fl["a_mm"],
+                         delta_star_mm=fl["delta_mm"], delta_dagger_mm=fg["delta_mm"],
+                         delta_dagger_mm_error=fg.get("delta_mm_error"))
+        out["points"].append(point)
 out["wall_s"] = time.perf_counter() - t0
 print(json.dumps(out))
-"""
+""" % (R_MM, C10_MPA)
 
 
-def solve_cell(t, h, mesh, delta_max, gamma, timeout):
+def depths(t):
+    """The h/R of a row: the lowest the domain allows (0.2, or just above t), 0.5, 1."""
+    lowest = 0.2 if t < 0.2 or t == 1.0 else round(t + 0.01, 2)
+    return sorted({lowest, *(h for h in H_LEVELS[1:] if h > t or t == 1.0)})
+
+
+def solve_cell(t, h, mesh, timeout):
     t0 = time.perf_counter()
     try:
-        run = subprocess.run([sys.executable, "-c", CELL, str(t), str(h), mesh, str(delta_max),
-                              str(gamma)], capture_output=True, text=True, timeout=timeout)
+        run = subprocess.run([sys.executable, "-c", CELL, str(t), str(h), mesh,
+                              json.dumps(GAMMA_HATS)], capture_output=True, text=True,
+                             timeout=timeout)
+        return json.loads(run.stdout.strip().splitlines()[-1])
     except subprocess.TimeoutExpired:
         return dict(t=t, h=h, status="timeout", reason=f"over {timeout:g} s",
                     wall_s=time.perf_counter() - t0)
-    if run.returncode != 0 or not run.stdout.strip():
-        return dict(t=t, h=h, status="crashed", reason=run.stderr.strip()[-200:],
+    except (IndexError, json.JSONDecodeError):
+        return dict(t=t, h=h, status="crashed", reason=run.stderr.strip()[-300:],
                     wall_s=time.perf_counter() - t0)
-    return json.loads(run.stdout.strip().splitlines()[-1])
 
 
-_LABELS = {"refused (not bracketed)": "no pull-off: paths do not\nbracket it (delta_max)",
-           "refused (graded zone)": "refused: pull-off radius\nin the graded mesh zone",
-           "refused (G short)": "refused: G short of\ngamma near pull-off"}
+def counts(cells):
+    points = [p for c in cells for p in c.get("points", [])]
+    lost = sum(len(GAMMA_HATS) for c in cells if c["status"] != "solved")
+    ok = sum(p["status"] == "ok" for p in points)
+    return ok, len(points) + lost
 
 
 def draw(cells, path, title):
     from matplotlib.figure import Figure
-    fig = Figure(figsize=(11, 7), layout="constrained")
+    from matplotlib.patches import Rectangle
+    fig = Figure(figsize=(12, 6.5), layout="constrained")
     ax = fig.subplots()
-    colours = {"solved": "#cfe8cf", "refused (domain)": "#dddddd"}
+    n = len(GAMMA_HATS)
     for c in cells:
-        i, j = T_OVER_R.index(c["t"]), H_OVER_R.index(c["h"])
-        colour = colours.get(c["status"], "#f4c7c3")
-        ax.add_patch(__import__("matplotlib.patches", fromlist=["Rectangle"]).Rectangle(
-            (i - 0.5, j - 0.5), 1, 1, color=colour))
-        lines = [_LABELS.get(c["status"], c["status"])]
-        if c["status"] == "solved":
-            err = c.get("P_star_error")
-            lines.append(f"P* {c['P_star']:.3g}" + (f" ± {err:.1g}" if err is not None else ""))
-        if "J_min" in c:
-            lines.append(f"J {c['J_min']:.2f}-{c['J_max']:.2f}")
-            if c.get("stopped_by"):
-                lines.append(f"loading to {c['delta_reached']:.3f} R")
-            if c.get("inversion"):
-                lines.append(f"inverted ({c['inversion']})")
-        elif c.get("reason"):
-            lines.append(c["reason"][:28])
-        lines.append(f"{c['wall_s']:.0f} s")
-        ax.text(i, j, "\n".join(lines), ha="center", va="center", fontsize=6.5)
+        i = T_OVER_R.index(c["t"])
+        j = 0 if c["h"] not in (0.5, 1.0) else (1 if c["h"] == 0.5 else 2)
+        points = c.get("points") or [dict(status=c["status"])] * n
+        for k, p in enumerate(points):
+            colour = "#cfe8cf" if p["status"] == "ok" else "#f4c7c3"
+            ax.add_patch(Rectangle((i - 0.5 + k / n, j - 0.5), 1 / n, 1, color=colour, ec="w"))
+            text = (f"{p['P_star_N']:.3g}" if p["status"] == "ok" else "refused")
+            if p.get("P_star_N_error") is not None:
+                text += f"\n±{100 * p['P_star_N_error'] / abs(p['P_star_N']):.2g}%"
+            ax.text(i - 0.5 + (k + 0.5) / n, j + 0.15, text, ha="center", va="center",
+                    fontsize=5.5)
+        fit = c.get("fit") or {}
+        ax.text(i, j - 0.3, f"h/R {c['h']:g}, {c.get('dofs', '-')} dofs\n"
+                f"{fit.get('solves', '-')} solves, {c['wall_s']:.0f} s", ha="center",
+                va="center", fontsize=6)
     ax.set_xticks(range(len(T_OVER_R)), [f"{t:g}" for t in T_OVER_R])
-    ax.set_yticks(range(len(H_OVER_R)), [f"{h:g}" for h in H_OVER_R])
+    ax.set_yticks(range(3), ["lowest", "0.5", "1"])
     ax.set_xlim(-0.5, len(T_OVER_R) - 0.5)
-    ax.set_ylim(-0.5, len(H_OVER_R) - 0.5)
-    ax.set_xlabel("t/R")
+    ax.set_ylim(-0.5, 2.5)
+    ax.set_xlabel("t/R (each cell: gamma/(C10 R) = " + ", ".join(f"{g:g}" for g in GAMMA_HATS)
+                  + "; P* in N at R = 20 mm, C10 = 0.3 MPa)")
     ax.set_ylabel("h/R")
     ax.set_title(title, fontsize=9)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=100)
+    fig.savefig(path, dpi=110)
 
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--mesh", default="coarse", choices=("coarse", "default", "fine"))
-    ap.add_argument("--delta-max", type=float, default=0.05)
-    ap.add_argument("--gamma", type=float, default=0.005, help="gamma / (C10 R)")
-    ap.add_argument("--timeout", type=float, default=600.0, help="per cell, s")
-    ap.add_argument("--out", type=Path, default=FIGURE)
+    ap.add_argument("--mesh", default="default", choices=("coarse", "default", "fine"))
+    ap.add_argument("--timeout", type=float, default=3600.0, help="per shell, s")
+    ap.add_argument("--out", type=Path, default=Path("domain_cells.json"))
+    ap.add_argument("--figure", type=Path, default=FIGURE)
     ap.add_argument("--redraw", type=Path, default=None,
-                    help="draw from the JSON line a previous run printed (no solving)")
+                    help="draw from the cells of a previous run (no solving)")
     a = ap.parse_args(argv)
-    title = (f"supported domain, no_slip, {a.mesh} mesh (error bar from the next coarser), "
-             f"delta_max {a.delta_max:g} R, P* / (C10 R^2) at gamma/(C10 R) = {a.gamma:g}")
     if a.redraw is not None:
-        draw(json.loads(a.redraw.read_text().strip().splitlines()[-1]), a.out, title)
-        return
-    cells = []
-    for h in H_OVER_R:
+        cells = json.loads(a.redraw.read_text())
+    else:
+        cells = []
         for t in T_OVER_R:
-            c = solve_cell(t, h, a.mesh, a.delta_max, a.gamma, a.timeout)
-            cells.append(c)
-            print(f"t/R {t:<5g} h/R {h:<4g} {c['status']:<28} P* {c.get('P_star', np.nan):10.4g}"
-                  f" +- {c.get('P_star_error') or np.nan:8.2g}  {c['wall_s']:7.1f} s  "
-                  f"{c.get('reason', c.get('stopped_by', ''))[:90]}", flush=True)
-    draw(cells, a.out, title)
-    print(json.dumps(cells))
+            for h in depths(t):
+                c = solve_cell(t, h, a.mesh, a.timeout)
+                cells.append(c)
+                for p in c.get("points", [dict(gamma_hat=None, status=c["status"])]):
+                    value = (f"P* {p['P_star_N']:9.4g} +- {p.get('P_star_N_error') or 0:7.2g} N"
+                             if p["status"] == "ok" else (p.get("reason") or c.get("reason")
+                                                          or "")[:110])
+                    print(f"t/R {t:<5g} h/R {h:<5g} gamma/(C10 R) {p['gamma_hat']!s:<6} "
+                          f"{p['status']:<13} {value}", flush=True)
+                print(f"  shell: {c.get('dofs', '-')} dofs, fit {c.get('fit')}, "
+                      f"{c['wall_s']:.0f} s", flush=True)
+                a.out.write_text(json.dumps(cells))
+    ok, total = counts(cells)
+    mesh = a.mesh if a.redraw is None else "default"
+    title = (f"supported domain, no_slip, {mesh} mesh, error bars from the next two coarser "
+             f"meshes: {ok} of {total} points answered")
+    draw(cells, a.figure, title)
+    print(f"{ok} of {total} points answered ({100 * ok / total:.0f} %)")
 
 
 if __name__ == "__main__":

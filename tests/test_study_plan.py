@@ -41,9 +41,11 @@ def test_gamma_ladder_rounds_up():
     assert gamma_bucket(0.011) == 0.015
     assert gamma_bucket(0.021) == 0.03
     assert gamma_bucket(1.5e-4) == 1.5e-4
-    # a set serving up to 0.015 is fitted to answer the ladder from 0.015 down to 0.00075
-    assert ladder_gammas(0.015) == (0.001, 0.0015, 0.002, 0.003, 0.005, 0.007, 0.01, 0.015)
+    # a set serving up to 0.015 is fitted to answer the ladder from 0.015 down to 1e-4
+    assert ladder_gammas(0.015) == (0.0001, 0.00015, 0.0002, 0.0003, 0.0005, 0.0007, 0.001,
+                                    0.0015, 0.002, 0.003, 0.005, 0.007, 0.01, 0.015)
     assert max(ladder_gammas(0.05)) == 0.03         # capped at the domain's GAMMA_MAX
+    assert ladder_gammas(5e-5) == (5e-5,)
 
 
 def test_nearby_studies_share_keys():

@@ -252,14 +252,16 @@ class PathSet:
             out |= a >= a_inv
         return out
 
-    def pull_off(self, gamma: float, surface: EnergySurface = None):
+    def pull_off(self, gamma: float, surface: EnergySurface = None, strict: bool = False):
         """Equilibrium curve and pull-off for gamma / (C10 R).
 
         Raises OutOfRange (a ValueError) where the paths cannot vouch for the pull-off:
         its curve is not bracketed (solver.energy.pull_off); a pull-off radius lies beyond
         UNIFORM_SHARE of the mesh's evenly meshed radius (`mesh.uniform_radius`); or a pair
         of paths near a pull-off radius stopped before G reached gamma, so the curve is
-        bridged there (`unreached`).
+        bridged there (`unreached`).  Bridged near a_dagger only, the fixed-load pull-off is
+        given with the fixed-grips values NaN and `PullOff.note` saying why (`strict`:
+        raise instead).
         """
         check_gamma(gamma, self.gamma_max)
         try:
@@ -286,15 +288,32 @@ class PathSet:
             gap = self.unreached(gamma)
             gap = gap[(gap > near.min()) & (gap < near.max())]
             if len(gap):
-                a_pair, G = self.G_reached()
-                G_gap = G[np.isin(a_pair, gap)]
-                reached = (f"reached only G/(C10 R) = {np.nanmax(G_gap):.4g}"
-                           if np.isfinite(G_gap).any() else "do not overlap in delta")
-                raise Bridged(
-                    f"gamma/(C10 R) = {gamma:g}: near the pull-off radius {name} = {a:.4g} R "
-                    f"the relaxation paths {reached} (at a = {gap[0]:.4g} R), below gamma: "
-                    f"the equilibrium curve is bridged there, so the value is not given", gap)
+                error = self._bridged(gamma, name, a, gap)
+                if name == "a*" or strict:
+                    raise error
+                # the fixed-load pull-off stands on its own: give it, say why not the other
+                po = replace(po, P_dagger=np.nan, delta_dagger=np.nan, a_dagger=np.nan,
+                             note=f"fixed grips not given: {error}")
         return eq, po
+
+    def _bridged(self, gamma, name, a, gap) -> Bridged:
+        """Why the curve for gamma is bridged at the pair radii `gap` near the pull-off
+        radius `a` (`name`): the G the pairs reached, or their paths' inversion."""
+        a_pair, G = self.G_reached()
+        G_gap = G[np.isin(a_pair, gap)]
+        reached = (f"reached only G/(C10 R) = {np.nanmax(G_gap):.4g}"
+                   if np.isfinite(G_gap).any() else "do not overlap in delta")
+        a_use = np.array([r.a for r in self.usable()])
+        k = np.searchsorted(a_use, gap[0])
+        pair = [r for r in self.relaxations if r.a in a_use[max(k - 1, 0):k + 1]]
+        flipped = [r for r in pair if r.centre_lifts]
+        why = (f"; the contact zone of the path at a = {flipped[0].a:.4g} R inverted (its "
+               f"centre left the plane) at delta = {flipped[0].inversion_delta:.4g} R, so the "
+               f"energy method of a contact disc ends there" if flipped else "")
+        return Bridged(
+            f"gamma/(C10 R) = {gamma:g}: near the pull-off radius {name} = {a:.4g} R the "
+            f"relaxation paths {reached} (at a = {gap[0]:.4g} R), below gamma{why}: the "
+            f"equilibrium curve is bridged there, so the value is not given", gap)
 
     @property
     def uniform_radius(self) -> float:

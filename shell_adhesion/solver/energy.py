@@ -138,6 +138,7 @@ class PullOff:
     delta_dagger: float
     a_dagger: float
     a0: float
+    note: str = ""      # why the fixed-grips values are NaN while the fixed-load ones are given
 
 
 def equilibrium(surface: EnergySurface, gamma: float) -> Equilibrium:

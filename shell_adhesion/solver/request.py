@@ -77,7 +77,7 @@ REACH_FACTOR = 3.0      # how much further each time (its stop rule's G x REACH_
 
 LADDER = (1, 1.5, 2, 3, 5, 7)   # x 10^k: the gamma / (C10 R) a set of paths serves up to
 _REL_TOL = 1e-9
-LADDER_SPAN = 20        # a set vouches for the ladder's values from its top down to top / 20
+GAMMA_FLOOR = 1e-4      # a set is fitted to the ladder's values from its top down to this
 
 
 def gamma_bucket(g: float) -> float:
@@ -97,18 +97,18 @@ def gamma_bucket(g: float) -> float:
 
 def ladder_gammas(top: float) -> tuple:
     """The gamma / (C10 R) values a set serving up to `top` is fitted to answer: the
-    LADDER values from `top` (capped at the domain's GAMMA_MAX) down to top / LADDER_SPAN
-    (smaller gammas pull off at smaller contact radii, which these cover)."""
+    LADDER values from `top` (capped at the domain's GAMMA_MAX) down to GAMMA_FLOOR, and
+    `top` itself (smaller gammas pull off at smaller contact radii still, JKR-like)."""
     top = min(top, GAMMA_MAX)
-    out, k = [], math.floor(math.log10(top)) + 1
-    while True:
-        for m in reversed(LADDER):
+    floor = min(GAMMA_FLOOR, top)
+    out, k = {top}, math.floor(math.log10(top)) + 1
+    while float(f"{LADDER[-1]}e{k}") >= floor * (1 - _REL_TOL):
+        for m in LADDER:
             v = float(f"{m}e{k}")
-            if v <= top * (1 + _REL_TOL) and v >= top / LADDER_SPAN * (1 - _REL_TOL):
-                out.append(v)
-        if float(f"{LADDER[0]}e{k}") < top / LADDER_SPAN:
-            return tuple(sorted(set(out)))
+            if floor * (1 - _REL_TOL) <= v <= top * (1 + _REL_TOL):
+                out.add(v)
         k -= 1
+    return tuple(sorted(out))
 
 
 @dataclass(frozen=True)
@@ -148,7 +148,7 @@ class Fit:
 
 def rules() -> dict:
     """The constants of the fit (part of a stored set's identity)."""
-    return dict(LADDER=list(LADDER), LADDER_SPAN=LADDER_SPAN, A_STAR_T=list(A_STAR_T),
+    return dict(LADDER=list(LADDER), GAMMA_FLOOR=GAMMA_FLOOR, A_STAR_T=list(A_STAR_T),
                 A_STAR_H=list(A_STAR_H), A_STAR_G=list(A_STAR_G),
                 A_STAR_RATIO=np.array(A_STAR_RATIO).tolist(), A_STAR_MARGIN=A_STAR_MARGIN,
                 A_MARGIN=A_MARGIN, TURN=TURN,
@@ -197,8 +197,9 @@ def initial_fit(cap: Cap, request: Request) -> Fit:
     return Fit(even_arc(cap, a_need), a_stop, bound)
 
 
-def answers(ps: PathSet, gammas) -> dict:
-    """gamma -> (Equilibrium, PullOff), or the OutOfRange that refuses it."""
+def answers(ps: PathSet, gammas, strict: bool = False) -> dict:
+    """gamma -> (Equilibrium, PullOff), or the OutOfRange that refuses it (`strict`: a
+    fixed-grips point the paths cannot vouch for refuses the whole, PathSet.pull_off)."""
     surface = ps.surface() if len(ps.usable()) >= 2 else None
     out = {}
     for g in gammas:
@@ -206,7 +207,7 @@ def answers(ps: PathSet, gammas) -> dict:
             if surface is None:
                 raise NotBracketed(f"gamma/(C10 R) = {g:g}: fewer than 2 usable relaxation "
                                    "paths", few=True)
-            out[g] = ps.pull_off(g, surface)
+            out[g] = ps.pull_off(g, surface, strict)
         except OutOfRange as e:
             out[g] = e
     return out
@@ -226,7 +227,7 @@ def next_fit(ps: PathSet, fit: Fit, request: Request):
     if fit.rounds >= MAX_ROUNDS:
         return None
     cap = Cap(ps.t, ps.h)
-    got = answers(ps, request.gammas)
+    got = answers(ps, request.gammas, strict=True)
     graded = [e.a for e in got.values() if isinstance(e, InGradedZone)]
     can_go_on = fit.a_stop is not None and ps.stats.get("loading_reached_a", False)
     a_end = float(ps.loading_a[-1])

@@ -355,7 +355,9 @@ def _companions(inp: CaseInput, gamma_max: float, g_hats):
                                  material=inp.material, cavity=inp.cavity)
         got = answers(ps, g_hats) if g_hats else {}
         out.append((ps, tuple(None if isinstance(got[g], Exception) else got[g][1]
-                              for g in g_hats)))
+                              for g in g_hats),
+                    {g: f"the {mesh} mesh: {got[g]}" for g in g_hats
+                     if isinstance(got[g], Exception)}))
     return out
 
 
@@ -430,12 +432,26 @@ def _solve(inp: CaseInput, progress: bool, error_bars: bool = True) -> CaseResul
                        "gap_tol_over_R": settings.gap_tol},
         "relaxation_gamma_max_over_C10R": gamma_max,
         "fit": fit_dict(ps.stats.get("fit", {}), R),
-        "error_bars": ({"coarser_meshes": [c.mesh for c, _ in companions], **error_estimate()}
+        "error_bars": ({"coarser_meshes": [c.mesh for c, _, _ in companions],
+                        **error_estimate(), "not_given": _missing(companions, inp, g_hats,
+                                                                  answered)}
                        if error_bars else None),
         **checks_dict(ps.stats, R, C10), **cavity_dict(ps.stats, R, C10)}
-    (c1, p1), (c2, p2) = companions if companions else ((None, ()), (None, ()))
+    (c1, p1, _), (c2, p2, _) = companions if companions else ((None, (), {}),) * 2
     return CaseResult(inp, ps, tuple(adhesion), provenance, c1, pick(p1) if c1 else (),
                       c2, pick(p2) if c2 else (), tuple(refused))
+
+
+def _missing(companions, inp: CaseInput, g_hats, answered) -> dict:
+    """Why an answered gamma [J/m^2] has no error bar, or an order-1 one only: which
+    coarser mesh gives no pull-off for it, and why (empty if none)."""
+    out = {}
+    for g, gh in zip(inp.gamma_J_m2, g_hats):
+        if gh in answered:
+            why = [reasons[gh] for _, _, reasons in companions if gh in reasons]
+            if why:
+                out[f"{g:g}"] = "; ".join(why)
+    return out
 
 
 def fit_dict(fit: dict, R_mm: float) -> dict:

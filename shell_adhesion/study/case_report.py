@@ -65,7 +65,7 @@ def _values(result):
                          stable_fixed_grips=empty.astype(bool))
         else:
             eq, po = answered[g]
-            values = dict(dimensional(po, g), status="ok", reason="")
+            values = dict(dimensional(po, g), status="ok", reason=po.note)
             curve = dict(a=L(eq.a), delta=L(eq.delta), P=F(eq.P),
                          stable_fixed_load=np.asarray(eq.stable_fixed_load, dtype=bool),
                          stable_fixed_grips=np.asarray(eq.stable_fixed_grips, dtype=bool))
@@ -125,6 +125,10 @@ def as_dict(result) -> dict:
              "stable_fixed_grips": [bool(v) for v in c["stable_fixed_grips"]]}
             for g, v, c in adhesion if v["status"] == "ok"]
         out["pull_off"] = [_pull_off_dict(g, v) for g, v, _ in adhesion]
+        missing = (result.provenance.get("error_bars") or {}).get("not_given", {})
+        for po in out["pull_off"]:
+            if f"{po['gamma_J_m2']:g}" in missing:     # the error bar says why it is not there
+                po["error_note"] = missing[f"{po['gamma_J_m2']:g}"]
     out["provenance"] = result.provenance
     return out
 
@@ -141,8 +145,9 @@ def _pull_off_dict(g, v) -> dict:
     values); with error bars, "<name>_error" beside each "<name>" and "<name>_order", the
     order observed on three meshes (None: order 1 assumed; solver.error_bars)."""
     out = {"gamma_J_m2": g, "status": v["status"]}
-    if v["status"] != "ok":
+    if v["reason"]:         # not answered, or the fixed grips not (PullOff.note)
         out["reason"] = v["reason"]
+    if v["status"] != "ok":
         return out
     out.update(fixed_load={}, fixed_grips={})
     for k, (group, name) in _JSON_NAMES.items():
@@ -246,7 +251,8 @@ def as_dataset(result) -> xr.Dataset:
         data["status"] = ("gamma", np.array([v["status"] for _, v, _ in adhesion], dtype=object),
                           _attrs("1", "evaluation status of the gamma (ok or out of range)"))
         data["reason"] = ("gamma", np.array([v["reason"] for _, v, _ in adhesion], dtype=object),
-                          _attrs("1", "why the gamma is not answered (empty when ok)"))
+                          _attrs("1", "why the gamma is not answered, or why its fixed-grips "
+                                      "values are not (empty: all given)"))
         data["jkr_P_star"] = ("gamma", np.array([v["jkr_P_star"] for _, v, _ in adhesion]),
                               _attrs("N", "JKR pull-off force of a solid sphere of radius R"))
         E = ("gamma", "point")

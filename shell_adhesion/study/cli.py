@@ -91,9 +91,11 @@ def _run_case(ns):
 
 
 def _pm(group, name, unit=" mm"):
-    """'value unit', or 'value +- error unit' when the error bar is known."""
+    """'value unit', or 'value +- error unit' when the error bar is known ('no error bar'
+    when it is not: the pull-off's error_note says why)."""
     err = group.get(f"{name}_error")
-    return (f"{group[name]:.4f}{unit}" if err is None
+    return (f"{group[name]:.4f}{unit} (no error bar: the coarser meshes do not give it)"
+            if err is None
             else f"{group[name]:.4f} +- {err:.2g}{unit}")
 
 
@@ -135,11 +137,16 @@ def _print_case(out):
             print(f"gamma = {po['gamma_J_m2']:g} J/m^2: {po['status']}: {po['reason']}")
             continue
         fl, fg = po["fixed_load"], po["fixed_grips"]
+        grips = (f"fixed grips P = {_pm(fg, 'P_N', ' N')}, delta = {_pm(fg, 'delta_mm')}, "
+                 f"a = {_pm(fg, 'a_mm')}" if fg["P_N"] is not None
+                 else "fixed grips not given (below)")
         print(f"gamma = {po['gamma_J_m2']:g} J/m^2: fixed load P* = {_pm(fl, 'P_N', ' N')}, "
-              f"delta* = {_pm(fl, 'delta_mm')}, a* = {_pm(fl, 'a_mm')}; fixed grips "
-              f"P = {_pm(fg, 'P_N', ' N')}, delta = {_pm(fg, 'delta_mm')}, "
-              f"a = {_pm(fg, 'a_mm')}; a0 = {_a0(po)}; eta = {po['eta']:.3g}"
+              f"delta* = {_pm(fl, 'delta_mm')}, a* = {_pm(fl, 'a_mm')}; {grips}; "
+              f"a0 = {_a0(po)}; eta = {po['eta']:.3g}"
               + (f" +- {po['eta_error']:.2g}" if po.get("eta_error") is not None else ""))
+        for note in (po.get("reason"), po.get("error_note")):
+            if note:
+                print(f"  {note}")
     p = out["provenance"]
     print(f"{p['dofs']} dofs, {p['newton_iterations']} Newton iterations, {p['wall_s']:.1f} s")
 

@@ -100,6 +100,7 @@ def _evaluate(ps, surface, C10, R, t, gamma, material=NEO_HOOKE):
     conv = dict(force=lambda x: force_N(x, C10, R), length=lambda x: length_mm(x, R))
     values = {k: conv[kind](getattr(po, k)) for k, (_, _, kind) in _PULL_OFF.items()}
     values["eta"] = eta_of(values["P_star"], R, t * R, C10, gamma, material)
+    values["note"] = po.note            # why the fixed-grips values are not given (if not)
     curve = dict(a_eq_mm=length_mm(eq.a, R), delta_eq=length_mm(eq.delta, R),
                  P_eq=force_N(eq.P, C10, R),
                  stable_fixed_load=np.asarray(eq.stable_fixed_load, dtype=float),
@@ -168,7 +169,9 @@ def _build_swept(plan: Plan, served: dict, failed: dict, history: str) -> xr.Dat
     status = ds["status"]
     ds["status"] = status.where(status.notnull(), "not requested").astype(object)
     ds["status"].attrs = status.attrs
-    for k in ("reason", "loading_stopped_by"):
+    for k in ("reason", "loading_stopped_by", "error_note"):
+        if k not in ds:
+            continue
         attrs = ds[k].attrs
         ds[k] = ds[k].where(ds[k].notnull(), "").astype(object)
         ds[k].attrs = attrs
@@ -221,7 +224,9 @@ def _build_cavity(plan: Plan, served: dict, failed: dict, history: str, material
             C10_MPa=("C10", C10s, C10_attrs),
             gamma_hat=(("C10", "gamma"), gamma_hat(ds["gamma"].values[None, :],
                                                    C10s[:, None], plan.study.R_mm), gh_attrs))
-        for k, fill in (("status", "not requested"), ("reason", "")):
+        for k, fill in (("status", "not requested"), ("reason", ""), ("error_note", "")):
+            if k not in ds:
+                continue
             attrs = ds[k].attrs
             ds[k] = ds[k].where(ds[k].notnull(), fill).astype(object)
             ds[k].attrs = attrs
@@ -340,14 +345,18 @@ def _build(plan: Plan, served: dict, failed: dict, history: str, material) -> xr
                 pass
 
     def companion(level, sets, th, C10, gamma, t):
+        """The pull-off values on the companion mesh `level`, or None, and why not."""
+        if th not in sets or (level, th) not in companion_surfaces:
+            return None, f"the {level} mesh's paths are not available"
         try:
             return _evaluate(sets[th][1], companion_surfaces[level, th], C10, R, t, gamma,
-                             material)[0]
-        except (KeyError, ValueError):   # not served, or out of its range
-            return None
+                             material)[0], ""
+        except ValueError as e:         # out of its range
+            return None, f"the {level} mesh: {e}"
 
     status = np.full(shape, "not requested", dtype=object)
     reason = np.full(shape, "", dtype=object)
+    notes = np.full(shape, "", dtype=object)
     results = {}
     for C10, t, h, gamma in plan.points:
         i = (index["C10_MPa"][C10], index["t_over_R"][t], index["h_over_R"][h],
@@ -360,11 +369,13 @@ def _build(plan: Plan, served: dict, failed: dict, history: str, material) -> xr
             try:
                 results[i] = _evaluate(served[t, h][1], surfaces[t, h], C10, R, t, gamma,
                                        material)
-                status[i] = "ok"
+                status[i], reason[i] = "ok", results[i][0].pop("note")
                 if plan.study.error_bars:
-                    results[i][0].update(_errors(
-                        results[i][0], companion("coarser", coarser, (t, h), C10, gamma, t),
-                        companion("coarsest", coarsest, (t, h), C10, gamma, t)))
+                    (c2, why2), (c3, why3) = (companion(level, sets, (t, h), C10, gamma, t)
+                                              for level, sets in (("coarser", coarser),
+                                                                  ("coarsest", coarsest)))
+                    results[i][0].update(_errors(results[i][0], c2, c3))
+                    notes[i] = "; ".join(w for w in (why2, why3) if w)
             except ValueError as e:     # solver.energy.OutOfRange and gamma > gamma_max
                 status[i], reason[i] = "out of range", str(e)
 
@@ -396,9 +407,14 @@ def _build(plan: Plan, served: dict, failed: dict, history: str, material) -> xr
             data[f"{k}_order"] = (DIMS, values[f"{k}_order"], _attrs(
                 "1", f"order of convergence of {k} observed on three meshes, used by its "
                      "error estimate (NaN: not observed, order 1 assumed with factor 3)"))
+    if study.error_bars:
+        data["error_note"] = (DIMS, notes, _attrs(
+            "1", "why an ok point's error bars are missing, or from two meshes only (empty: "
+                 "from three)"))
     data["status"] = (DIMS, status, _attrs(
         "1", "evaluation status of the point", comment="one of: " + "; ".join(STATUS)))
-    data["reason"] = (DIMS, reason, _attrs("1", "why a point is not ok (empty when ok)"))
+    data["reason"] = (DIMS, reason, _attrs("1", "why a point is not ok, or why its fixed-grips "
+                                                "values are not given (empty: all given)"))
     C10s, gammas = np.array(ax["C10_MPa"]), np.array(ax["gamma_J_m2"])
     data["gamma_hat"] = (("C10", "gamma"), gamma_hat(gammas[None, :], C10s[:, None], R),
                          _attrs("1", "dimensionless work of adhesion gamma / (C10 R)"))

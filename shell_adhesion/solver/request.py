@@ -1,18 +1,22 @@
 """Fitting the FE paths of one shell to a request (DESIGN.md section 9).
 
-A request is the set of gamma / (C10 R) values the paths must answer and, optionally, an
-explicit deepest loading delta_max / R.  From it follow, before any FE solve:
+A request is what a set of paths must answer: every gamma / (C10 R) of a ladder up to the
+largest asked (`Request.serving`: another C10, R or a nearby gamma shares the set) and,
+optionally, an explicit deepest loading delta_max / R.  From it follow, before any FE solve
+(`initial_fit`):
 - the evenly meshed zone: it must hold every pull-off radius (a*, a_dagger) with its
   curve's support, since beyond it the grading biases G in a way the error bar cannot see
-  (`even_arc`, from `a_star_estimate`);
+  (`even_arc`, from `a_star_estimate`, a measured table);
 - the loading depth: without an explicit delta_max the loading goes on to the contact
-  radius the pull-offs need (`loading_target`), bounded by `depth_bound` (the domain's
-  delta bound for the shell, below the cap's depth).
+  radius the pull-offs need (TURN x the estimate of a*), bounded by
+  solver.geometry.delta_bound (the domain's delta bound for the shell, below the cap's
+  depth).
 After a solve, `next_fit` reads what the paths answer and says what to do once more, if
 anything: load deeper (a curve still falling at its large-a end), mesh evenly further (a
 pull-off radius beyond UNIFORM_SHARE of the even zone) or relax further (a pair of paths
 near a pull-off stopped before G reached gamma).  Each is bounded (MAX_ROUNDS, MAX_REMESH,
-MAX_REACH), so the loop ends whatever the paths do.
+MAX_REACH), so the loop ends whatever the paths do.  `solve_request` runs the loop in one
+process; a study runs the same steps as dask tasks (study.run.compute).
 
 Dimensionless: lengths / R, gamma / (C10 R).  Pure functions (no files, no printing).
 """

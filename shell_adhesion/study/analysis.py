@@ -414,7 +414,9 @@ def _curve(ds, point):
 
 
 def _loading_at(ds, point, delta_mm):
-    """(P [N], a [mm]) at delta on the base shell's loading curve, or None if not reached."""
+    """(P [N], a [mm], node spacing [mm]) at delta on the base shell's loading curve, or
+    None if not reached; a is interpolated between the contact events around delta (where
+    nodes join)."""
     if not all(v in ds for v in ("loading_delta_mm", "loading_a", "loading_P")):
         return None
     shell = {d: point[d] for d in ("t_over_R", "h_over_R")}
@@ -425,13 +427,19 @@ def _loading_at(ds, point, delta_mm):
     d, a, P = d[ok], a[ok], P[ok]
     if len(d) < 2 or d.max() < delta_mm * (1 - 1e-9):
         return None
-    # states are dense and the last one sits at delta_max: linear between states
-    return float(np.interp(delta_mm, d, P)), float(np.interp(delta_mm, d, a))
+    # P: the states are dense, linear between them; a: between the contact events (the
+    # states where a node joins), the contact radius grows between nodes; beyond the last
+    # event, the outermost node in contact (the next touches further on)
+    event = np.r_[True, np.diff(a) > 0]
+    spacing = float(np.diff(a[event])[-1]) if event.sum() >= 2 else np.nan
+    return (float(np.interp(delta_mm, d, P)), float(np.interp(delta_mm, d[event], a[event])),
+            spacing)
 
 
 def _held_P_at_zero(ds, point, a_mm):
-    """P [N] at delta = 0 with the contact radius a held (relaxation curves, Fig. 2b),
-    interpolated linearly in a between the two neighbouring paths; else why not (str)."""
+    """(P [N], note) at delta = 0 with the contact radius a held (relaxation curves, Fig.
+    2b), interpolated linearly in a between the two neighbouring paths (or extrapolated up
+    to one path spacing beyond the widest, the note says so); else why not (str)."""
     if not all(v in ds for v in ("relaxation_a_mm", "relaxation_delta_mm", "relaxation_P")):
         return "no relaxation curves"
     shell = {d: point[d] for d in ("t_over_R", "h_over_R")}
@@ -457,11 +465,19 @@ def _held_P_at_zero(ds, point, a_mm):
             P0.append(float(CubicHermiteSpline(d, p, s)(0.0)))
         else:
             P0.append(float(CubicSpline(d, p)(0.0)) if len(d) >= 4 else float(np.interp(0, d, p)))
-    if len(a0) < 2 or not min(a0) <= a_mm <= max(a0):
-        span = f"{min(a0):.4g} to {max(a0):.4g} mm" if a0 else "none"
-        return f"held radii of the paths reaching delta = 0: {span}"
     o = np.argsort(a0)
-    return float(np.interp(a_mm, np.array(a0)[o], np.array(P0)[o]))
+    a0, P0 = np.array(a0)[o], np.array(P0)[o]
+    # a held radius up to one path spacing beyond the widest path: the cubic through the
+    # last four paths, extrapolated (P(delta = 0) is smooth in a)
+    reach = a0[-1] + (a0[-1] - a0[-2]) if len(a0) >= 4 else (a0[-1] if len(a0) else np.nan)
+    if len(a0) < 2 or not a0[0] <= a_mm <= reach:
+        span = f"{a0[0]:.4g} to {a0[-1]:.4g} mm" if len(a0) else "none"
+        return f"held radii of the paths reaching delta = 0: {span}"
+    if a_mm > a0[-1]:
+        return float(np.polyval(np.polyfit(a0[-4:], P0[-4:], 3), a_mm)), (
+            f"extrapolated {a_mm - a0[-1]:.2g} mm beyond the widest path ({a0[-1]:.4g} mm) "
+            "by the cubic through the last four")
+    return float(np.interp(a_mm, a0, P0)), ""
 
 
 def paper_comparison(ds: xr.Dataset) -> Comparison:
@@ -512,14 +528,17 @@ def paper_comparison(ds: xr.Dataset) -> Comparison:
     else:
         rows.append(_row("P at delta = 5 mm, no adhesion", 14.67, loaded[0], "N",
                          "loading curve, linear between states"))
-        rows.append(_row("a at delta = 5 mm, no adhesion", 10.0, loaded[1], "mm"))
+        rows.append(_row("a at delta = 5 mm, no adhesion", 10.0, loaded[1], "mm",
+                         f"between contact events, else the outermost node in contact "
+                         f"(nodes {loaded[2]:.2g} mm apart there)"))
 
     held = _held_P_at_zero(ds, base, 10.0)
     if isinstance(held, str):
         skipped.append(f"P at delta = 0 with a = 10 mm held (Fig. 2b): {held}")
     else:
-        rows.append(_row("P at delta = 0, a = 10 mm held", -35.49, held, "N",
-                         "steep in a: about 13 N per mm of a"))
+        P10, how = held
+        rows.append(_row("P at delta = 0, a = 10 mm held", -35.49, P10, "N",
+                         "; ".join(w for w in ("steep in a: about 13 N per mm of a", how) if w)))
 
     a_thick = _value(ds, "a_star", t_over_R=0.225)
     if math.isfinite(a_thick):

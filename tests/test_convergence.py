@@ -1,5 +1,6 @@
 """Validation 6: mesh convergence of the headline numbers of the base shell, from the
-default mesh to one uniform refinement (every size halved).  Tolerance 0.5 %.
+default mesh to one uniform refinement (every size halved): the README's differences (P(5 mm) 0.03 %,
+P* 0.18 %, delta_dagger 0.24 %), each held at twice its size.
 
 The pull-off numbers need only the contact radii around the pull-off points, so their
 paths are loaded to delta = 0.05 R (a up to about 4.4 mm, beyond a* = 2 mm); P(5 mm) from
@@ -9,7 +10,7 @@ import pytest
 from shell_adhesion.solver.case import solve_loading
 
 from conftest import GAMMA_HAT, base_case
-from test_paper import loading_P
+from validation import loading_P, within
 
 # the fine mesh (20k dofs) takes minutes: `python -m pytest -m slow` runs it
 pytestmark = pytest.mark.slow
@@ -28,6 +29,7 @@ def meshes():
     return out
 
 
-@pytest.mark.parametrize("name", ["P5", "P_star", "delta_dagger"])
-def test_default_to_fine_within_half_percent(meshes, name):
-    assert meshes["default"][name] == pytest.approx(meshes["fine"][name], rel=5e-3)
+@pytest.mark.parametrize("name,stated", [("P5", 3e-4), ("P_star", 1.8e-3), ("delta_dagger", 2.4e-3)])
+def test_default_to_fine_as_the_readme_states(meshes, name, stated):
+    within(f"default mesh {name} against the fine mesh", meshes["default"][name],
+           meshes["fine"][name], 2 * stated)

@@ -14,6 +14,8 @@ from shell_adhesion.solver.error_bars import (ORDER, SAFETY, SAFETY_OBSERVED, cu
                                                error_bar, observed_order)
 from shell_adhesion.study import analysis, figures, tables
 
+from validation import within
+
 matplotlib.use("Agg")
 
 
@@ -113,8 +115,12 @@ def test_base_shell_default_error_bar_holds_the_fine_value():
     P = {m: base_case(m, "no_slip", 0.006, 0.05)[0].pull_off(GAMMA_HAT)[1].P_star
          for m in ("coarse", "default", "fine")}
     err = float(error_bar(P["default"], P["coarse"]))
+    print("base shell P*", P, "error bar", err)
     assert abs(P["fine"] - P["default"]) <= 2 * err
-    assert err < 0.02 * abs(P["default"])
+    # README: -0.0142492 +- 6.1e-5 C10 R^2 (0.43 %), the fine mesh 0.41 error bars away
+    within("base shell error bar", err, 6.1e-5, 0.0, floor=0.1e-5)
+    within("fine - default in error bars", abs(P["fine"] - P["default"]) / err, 0.41, 0.0,
+           floor=0.02)
 
 
 @pytest.mark.slow

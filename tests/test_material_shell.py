@@ -12,6 +12,7 @@ from shell_adhesion.solver.case import (relax_from, relaxation_starts, relaxatio
                                         solve_loading, solve_paths)
 from shell_adhesion.solver.material import Material
 from test_energy import hermite_integral, loading_work
+from validation import finite_body_within, within
 
 BASE = dict(t=0.15, h=1.0)
 R_MM, C10_MPA = 20.0, 0.3
@@ -42,7 +43,9 @@ def test_gent_tends_to_neo_hooke():
         assert len(path.states) == len(ref.states)
         err[Jm] = np.abs(path.array("P")[1:] / P0 - 1).max()
     assert err[3.0] > err[30.0] > err[300.0] > 0
-    assert err[300.0] < 1e-4
+    # the README's 2.85e-3, 2.84e-4, 2.84e-5 (held to 1 %)
+    for Jm, stated in ((3.0, 2.85e-3), (30.0, 2.84e-4), (300.0, 2.84e-5)):
+        within(f"Gent - neo-Hooke at Jm = {Jm:g}", err[Jm], stated, 0.01)
     # asymptotically 1/Jm: each decade of Jm divides the difference by 10
     assert err[3.0] / err[30.0] == pytest.approx(10, rel=0.05)
     assert err[30.0] / err[300.0] == pytest.approx(10, rel=0.01)
@@ -50,7 +53,7 @@ def test_gent_tends_to_neo_hooke():
 
 def test_rubber_D1_barely_changes_the_base_shell():
     """D1 = 1e-5 /MPa with C10 = 0.3 MPa (D1 C10 = 3e-6, nu = 0.499998) moves P(3 mm) by
-    less than 0.1 %, and makes the shell softer."""
+    2.0e-6 (README; held below 4e-6), and makes the shell softer."""
     delta = 3.0 / R_MM
     _, ref = loading(delta_max=delta)
     m = Material.from_MPa("neo_hooke", C10_MPa=C10_MPA, D1_per_MPa=1e-5)
@@ -58,13 +61,13 @@ def test_rubber_D1_barely_changes_the_base_shell():
     _, path = loading(m, delta_max=delta)
     P_ref, P = ref.states[-1].P, path.states[-1].P
     assert ref.states[-1].delta == path.states[-1].delta == pytest.approx(delta)
-    assert 0 < 1 - P / P_ref < 1e-3
+    assert 0 < 1 - P / P_ref < 4e-6, 1 - P / P_ref
 
 
 def test_mooney_rivlin_hemisphere_follows_hertz():
     """Solid hemisphere, C01 = C10 / 2: P/P_Hertz with E* = 8 (C10 + C01) = 12 C10 follows the
     finite-body correction 1 + 0.7 a/R of test_hertz (at corner-node contact events once
-    the contact spans three coarse elements)."""
+    the contact spans three coarse elements): within 0.12 % (README), held at 0.24 %."""
     m = Material("mooney_rivlin", C01_over_C10=0.5)
     assert theory.e_star_MPa(C10_MPA, m) == pytest.approx(8 * 1.5 * C10_MPA)
     d, path = loading(m, delta_max=0.0035, t=1.0, h=1.0)
@@ -77,7 +80,7 @@ def test_mooney_rivlin_hemisphere_follows_hertz():
     a_h = np.array([theory.hertz_a_mm(x, R_MM) for x in delta])
     sel = (a / R_MM >= 0.015) & (a / R_MM <= 0.05)
     assert sel.sum() >= 3
-    np.testing.assert_allclose(P[sel] / P_h[sel], 1 + 0.7 * a[sel] / R_MM, rtol=5e-3)
+    finite_body_within(P[sel] / P_h[sel], a[sel] / R_MM, rtol=2.4e-3)
     assert np.all(np.abs(a[sel] / a_h[sel] - 1) < 0.03)
 
 

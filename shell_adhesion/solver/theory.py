@@ -79,5 +79,5 @@ def shell_law_scale_N(R_mm, t_mm, C10_MPa, gamma_J_m2, material: Material = NEO_
 
 
 def eta_of(P_star_N, R_mm, t_mm, C10_MPa, gamma_J_m2, material: Material = NEO_HOOKE):
-    """eta of eq. 3 from a pull-off force (|P*| / scale)."""
+    """eta of eq. 3 from a pull-off force (abs(P*) / scale)."""
     return abs(P_star_N) / shell_law_scale_N(R_mm, t_mm, C10_MPa, gamma_J_m2, material)

@@ -577,7 +577,7 @@ def paper_comparison(ds: xr.Dataset) -> Comparison:
 # ---------------------------------------------------------------------------------------
 
 def summary(ds: xr.Dataset) -> str:
-    """A few lines: trends of |P*|, the eta fit, the slope in gamma, the JKR ratio."""
+    """A few lines: trends of abs(P*), the eta fit, the slope in gamma, the JKR ratio."""
     s = study_of(ds)
     base = base_point(ds)
     lines = [f"study {s.get('name', '?')}: R = {R_mm(ds):g} mm, mesh {ds.attrs.get('mesh', '?')}, "

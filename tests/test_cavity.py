@@ -21,8 +21,8 @@ from shell_adhesion.solver.forms import discretise, residual, tangent
 from shell_adhesion.solver.geometry import Cap, InputError
 from shell_adhesion.solver.mesh import cap_mesh, mesh_spec
 
-from conftest import energy_roundoff
-from validation import energy_balance_within
+from conftest import REPO, energy_roundoff
+from validation import energy_balance_within, within
 
 P_ATM = 101.325e-3 / 0.3          # the atmosphere over the base shell's C10
 
@@ -312,3 +312,43 @@ def test_pathset_stores_the_cavity():
     del old.attrs["cavity"]
     legacy = from_dataset(old)
     assert not legacy.cavity.closed and np.isnan(legacy.loading_p).all()
+
+
+# docs/cavities.md: the base shell (coarse mesh, loading to 2 mm, gamma = 30 J/m^2), each
+# number to its last digit: P* [N], delta* [mm], apex lift before touching [mm], P(2 mm) [N]
+CAVITY_NUMBERS = {
+    "open": (-1.7045, -0.608, 0.0, 4.45),
+    "sealed": (-1.7064, -0.604, 0.0, 4.56),
+    "inflated +10 kPa": (-1.778, -0.578, -0.217, 5.04),
+    "depressurised -15 kPa": (-1.585, -0.659, 0.286, 3.50),
+}
+
+
+@pytest.mark.parametrize("name", sorted(CAVITY_NUMBERS))
+def test_cavity_numbers_of_the_docs(name):
+    import sys
+    sys.path.insert(0, str(REPO / "benchmarks"))
+    import cavity as bench
+    from shell_adhesion.solver.scaling import gamma_hat
+    ps, _, _ = bench.solve(name, "coarse", 2.0)
+    _, po = ps.pull_off(gamma_hat(30.0, 0.3, 20.0))
+    F, R = 0.3 * 20.0 ** 2, 20.0
+    ours = (po.P_star * F, po.delta_star * R, -ps.stats.get("cavity_lift", 0.0) * R,
+            float(np.interp(2.0 / R, ps.loading_delta, ps.loading_P)) * F)
+    for what, value, stated in zip(("P*", "delta*", "apex lift", "P(2 mm)"), ours,
+                                   CAVITY_NUMBERS[name]):
+        digits = len(repr(stated).split(".")[1]) if stated != 0.0 else 4
+        within(f"{name} {what}", value, stated, 0.0, floor=10.0 ** -digits)
+
+
+@pytest.mark.parametrize("p,stated", [(0.02, 2.30), (0.05, 1.45), (0.1, 1.14)])
+def test_membrane_limit(p, stated):
+    """An inflated thin hemisphere (t/R = 0.05, coarse, delta = 0.05 R) carries its contact
+    force as a membrane as p grows: P / (p pi a^2) -> 1 (docs/cavities.md: 2.30, 1.45,
+    1.14 at p/C10 = 0.02, 0.05, 0.1)."""
+    from shell_adhesion.solver.case import solve_loading
+    cav = Cavity("pressure", p=p, p_atm=P_ATM)
+    _, loading = solve_loading(0.05, 1.0, "no_slip", "coarse", 0.05, cavity=cav)
+    s = loading.states[-1]
+    within(f"P / (p pi a^2) at p/C10 = {p}", s.P / (p * np.pi * s.a ** 2), stated, 0.0,
+           floor=0.01)

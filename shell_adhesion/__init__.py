@@ -11,7 +11,7 @@ The same functions serve the ``shell-adhesion`` command.  Subpackages:
 `shell_adhesion.study` (parameter studies on dask, the results cube, the command line),
 `shell_adhesion.catalogue` (the store of solved path sets).
 """
-from importlib import import_module
+from importlib import import_module as _import_module
 
 from .solver import __version__
 
@@ -29,7 +29,7 @@ __all__ = ["__version__", *_LAZY]
 
 def __getattr__(name):
     if name in _LAZY:
-        return getattr(import_module(_LAZY[name]), name)
+        return getattr(_import_module(_LAZY[name]), name)
     raise AttributeError(f"module 'shell_adhesion' has no attribute {name!r}")
 
 

@@ -14,9 +14,11 @@
 Bad input prints one line naming the flag, the value and the rule, and exits with 2,
 before any computation and without creating anything.  The rules are the solver's
 (`study.case.case_input` for `case`, `study.config` for study files).  `case` has no
-`-h`: the depth is `--h`, help is `--help`.
+`-h`: the depth is `--h`, help is `--help`.  A mistyped flag gets the nearest one
+("did you mean --gamma?").
 """
 import argparse
+import difflib
 import os
 from pathlib import Path
 import sys
@@ -42,8 +44,31 @@ MATERIAL_FLAGS = (("C01", "C01_MPa", "MPa"), ("C20", "C20_MPa", "MPa"), ("C30", 
 
 
 class _Parser(argparse.ArgumentParser):
+    """argparse with one-line errors, and a flag's nearest spelling for a mistyped one."""
+
     def error(self, message):
         self.exit(2, f"{self.prog}: error: {message}\n")
+
+    def parse_known_args(self, args=None, namespace=None):
+        args = sys.argv[1:] if args is None else list(args)
+        self._check_flags(args)
+        return super().parse_known_args(args, namespace)
+
+    def _check_flags(self, args):
+        """Refuse a `--flag` this parser does not know, naming the one it resembles,
+        before argparse reports missing arguments instead.  A command's own flags are
+        its subparser's to check; prefixes (`--gam`) are argparse's to resolve."""
+        flags = [f for a in self._actions for f in a.option_strings if f.startswith("--")]
+        commands = any(isinstance(a, argparse._SubParsersAction) for a in self._actions)
+        for arg in args:
+            if arg == "--" or (commands and not arg.startswith("-")):
+                return
+            name = arg.split("=", 1)[0]
+            if not name.startswith("--") or any(f.startswith(name) for f in flags):
+                continue
+            close = difflib.get_close_matches(name, flags, n=1)
+            if close:
+                self.error(f"{name}: not an option; did you mean {close[0]}?")
 
 
 class _OneDash(argparse.Action):

@@ -1,16 +1,49 @@
-"""What a newcomer meets first: a clean package namespace, and a study file that is not
-found named by its absolute path."""
+"""What a newcomer meets first: `--version`, the licence and the citation, a clean package
+namespace, and a study file that is not found named by its absolute path."""
 from pathlib import Path
 import re
+import tomllib
 
 import pytest
+import yaml
 
 import shell_adhesion as sa
+from shell_adhesion.study.cli import main
 from shell_adhesion.study.config import StudyError
+
+from conftest import REPO
+
+PAPER_TITLE = "Adherence of a hyperelastic shell on a rigid planar substrate"
+
+
+def test_version(capsys):
+    with pytest.raises(SystemExit) as stop:
+        main(["--version"])
+    assert stop.value.code == 0
+    assert capsys.readouterr().out == f"shell-adhesion {sa.__version__}\n"
+
+
+def test_one_source_of_the_version():
+    project = tomllib.loads((REPO / "pyproject.toml").read_text())
+    assert "version" not in project["project"] and "version" in project["project"]["dynamic"]
+    assert (project["tool"]["setuptools"]["dynamic"]["version"]
+            == {"attr": "shell_adhesion.solver.__version__"})
 
 
 def test_namespace_has_no_import_module():
     assert not hasattr(sa, "import_module") and "import_module" not in dir(sa)
+
+
+def test_licence_and_citation():
+    licence = (REPO / "LICENSE").read_text()
+    assert licence.startswith("MIT License") and "2026 the shell-adhesion authors" in licence
+    project = tomllib.loads((REPO / "pyproject.toml").read_text())["project"]
+    assert project["license"] == "MIT"
+    cff = yaml.safe_load((REPO / "CITATION.cff").read_text())
+    assert cff["cff-version"] == "1.2.0" and cff["type"] == "software"
+    assert cff["title"] == "shell-adhesion" and cff["license"] == "MIT"
+    assert [r["title"] for r in cff["references"]] == [PAPER_TITLE]
+    assert all(r["authors"] for r in cff["references"])
 
 
 def test_missing_study_named_by_absolute_path(tmp_path, monkeypatch):

@@ -8,6 +8,7 @@
     shell-adhesion tables results/paper.nc [--format md|csv|tex] [--table cases|paper|all] [--out FILE]
     shell-adhesion plot results/paper.nc [--out DIR] [--format png,pdf] [--dpi 150]
     shell-adhesion analyse results/paper.nc
+    shell-adhesion --version
 
 `tables`, `plot` and `analyse` read a results cube and never run the solver.
 
@@ -305,7 +306,7 @@ def _run_analyse(ns):
 def _parser():
     parser = _Parser(prog="shell-adhesion",
                      description="Adhesion of a soft hyperelastic spherical-cap shell on a rigid plane.")
-    parser.add_argument("--version", action="version", version=__version__)
+    parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     case = sub.add_parser("case", help="solve one shell: loading curve, and pull-off for each --gamma",
                           add_help=False)

@@ -1,5 +1,6 @@
-"""What a newcomer meets first: `--version`, the licence and the citation, a clean package
-namespace, and a study file that is not found named by its absolute path."""
+"""What a newcomer meets first: the shipped studies (one text with the repository's files),
+`--version`, the licence and the citation, a clean package namespace, and a study file that
+is not found named by its absolute path."""
 from pathlib import Path
 import re
 import tomllib
@@ -14,6 +15,29 @@ from shell_adhesion.study.config import StudyError
 from conftest import REPO
 
 PAPER_TITLE = "Adherence of a hyperelastic shell on a rigid planar substrate"
+
+
+@pytest.mark.parametrize("name, copy", [("paper", "workflow.yaml"),
+                                        ("mooney-rivlin", "examples/study_mooney_rivlin.yaml")])
+def test_shipped_study_is_the_repository_file(name, copy):
+    """One text: edit the package's copy and the repository's together."""
+    assert sa.examples.study_path(name).read_bytes() == (REPO / copy).read_bytes()
+
+
+def test_paper_study_path():
+    assert sa.examples.paper_study() == sa.examples.study_path("paper")
+    assert sa.examples.paper_study().is_file()
+
+
+def test_unknown_study_name():
+    with pytest.raises(ValueError, match="example: 'papr' must be one of paper, mooney-rivlin"):
+        sa.examples.study_path("papr")
+
+
+def test_example_command_prints_the_study(capsys):
+    assert main(["example", "paper"]) == 0
+    out = capsys.readouterr().out
+    assert out == (REPO / "workflow.yaml").read_text()
 
 
 def test_version(capsys):
@@ -32,6 +56,7 @@ def test_one_source_of_the_version():
 
 def test_namespace_has_no_import_module():
     assert not hasattr(sa, "import_module") and "import_module" not in dir(sa)
+    assert "examples" in dir(sa)
 
 
 def test_licence_and_citation():

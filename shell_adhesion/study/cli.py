@@ -8,6 +8,7 @@
     shell-adhesion tables results/paper.nc [--format md|csv|tex] [--table cases|paper|all] [--out FILE]
     shell-adhesion plot results/paper.nc [--out DIR] [--format png,pdf] [--dpi 150]
     shell-adhesion analyse results/paper.nc
+    shell-adhesion example paper|mooney-rivlin > workflow.yaml
     shell-adhesion --version
 
 `tables`, `plot` and `analyse` read a results cube and never run the solver.
@@ -25,6 +26,7 @@ from pathlib import Path
 import sys
 import time
 
+from shell_adhesion import examples
 from shell_adhesion.solver import INTERFACES, ConvergenceError, InputError, __version__
 from shell_adhesion.solver.path import MaterialLimitError
 
@@ -296,6 +298,11 @@ def _run_plot(ns):
     return 0
 
 
+def _run_example(ns):
+    sys.stdout.write(examples.study_text(ns.name))
+    return 0
+
+
 def _run_analyse(ns):
     from .analysis import open_results, summary
 
@@ -390,6 +397,11 @@ def _parser():
     ana = sub.add_parser("analyse", aliases=["summary"],
                          help="trends of |P*|, eta fit, slope in gamma, JKR ratio of a results cube")
     ana.add_argument("results", help="results netCDF written by `run` (results/<name>.nc)")
+    ex = sub.add_parser("example", help="print a study file shipped with the package (paper: "
+                                        "the paper's study, the repository's workflow.yaml)")
+    ex.add_argument("name", choices=tuple(examples.STUDIES),
+                    help="paper or mooney-rivlin; e.g. `shell-adhesion example paper > "
+                         "workflow.yaml`")
     return parser
 
 
@@ -454,6 +466,8 @@ def main(argv=None):
             return _run_analyse(ns)
         if ns.command == "catalogue":
             return _run_catalogue(ns)
+        if ns.command == "example":
+            return _run_example(ns)
     except InputError as err:
         print(f"shell-adhesion: error: {err}", file=sys.stderr)
         return 2

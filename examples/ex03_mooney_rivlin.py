@@ -4,10 +4,14 @@ Runs examples/study_mooney_rivlin.yaml with `shell_adhesion.run_study` (R = 20 m
 h = 20 mm, C10 = 0.3 MPa, gamma = 30 J/m^2, no-slip; C01/C10 from 0, neo-Hookean, to 0.5;
 coarse mesh, delta_max = 0.15 R).  Each ratio is one FE path set (the ratio is an FE
 dimension, C10 only rescales), stored in the catalogue, so a rerun solves nothing.  Reads
-the cube along its C01_over_C10 dimension and writes docs/figures/mooney_rivlin.png: P* and
-P_dagger, delta_dagger and delta* against C01/C10.
+the cube along its C01_over_C10 dimension and writes mooney_rivlin.png into the folder
+--out (default: the working folder): P* and P_dagger, delta_dagger and delta* against
+C01/C10.  The cube goes to <out>/results/.  About half a minute on two cores, with the
+study's progress lines on stderr.
 
-    python examples/ex03_mooney_rivlin.py [--mesh coarse] [--delta-max-over-R 0.15]
+    python examples/ex03_mooney_rivlin.py [--out DIR] [--mesh coarse] [--delta-max-over-R 0.15]
+
+(`--out docs/figures` regenerates the figure in the repository's docs.)
 """
 import argparse
 from pathlib import Path
@@ -19,12 +23,14 @@ import yaml
 from shell_adhesion import run_study
 
 STUDY = Path(__file__).parent / "study_mooney_rivlin.yaml"
-FIGURE = Path(__file__).parent.parent / "docs" / "figures" / "mooney_rivlin.png"
+FIGURE = "mooney_rivlin.png"        # written into the folder --out
 
 
-def sweep(ratios=None, mesh=None, delta_max_over_R=None, out=None, catalogue=None):
+def sweep(ratios=None, mesh=None, delta_max_over_R=None, out=None, catalogue=None,
+          progress=False):
     """Rows (C01/C10, P* [N], delta* [mm], delta_dagger [mm], P_dagger [N], eta) of the
-    study's cube (its ratios, mesh and delta_max unless given)."""
+    study's cube (its ratios, mesh and delta_max unless given); `progress` prints the
+    study's progress lines on stderr."""
     doc = yaml.safe_load(STUDY.read_text())
     if ratios is not None:
         doc["sweeps"] = {"C01_over_C10": [float(q) for q in ratios]}
@@ -33,7 +39,7 @@ def sweep(ratios=None, mesh=None, delta_max_over_R=None, out=None, catalogue=Non
     if delta_max_over_R is not None:
         doc["delta_max_over_R"] = delta_max_over_R
     with tempfile.TemporaryDirectory() as tmp:
-        ds = run_study(doc, out=out or tmp, catalogue=catalogue, progress=False)
+        ds = run_study(doc, out=out or tmp, catalogue=catalogue, progress=progress)
         base = {dim: doc["base"][name] for dim, name in
                 (("C10", "C10_MPa"), ("t_over_R", "t_over_R"), ("h_over_R", "h_over_R"),
                  ("gamma", "gamma_J_m2"))}
@@ -44,7 +50,8 @@ def sweep(ratios=None, mesh=None, delta_max_over_R=None, out=None, catalogue=Non
     return np.array(rows, dtype=float)
 
 
-def figure(rows, path=FIGURE, title=""):
+def figure(rows, path, title=""):
+    """The two panels of `rows` (from `sweep`) as a PNG at `path`."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -66,15 +73,31 @@ def figure(rows, path=FIGURE, title=""):
     plt.close(fig)
 
 
-if __name__ == "__main__":
+def arguments(argv=None):
+    """The command line: --out (folder of the figure and the cube), --mesh, --delta-max-over-R."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--out", type=Path, default=Path("."),
+                    help=f"folder for {FIGURE} and results/ (default: the working folder)")
     ap.add_argument("--mesh", default="coarse")
     ap.add_argument("--delta-max-over-R", type=float, default=0.15)
-    ns = ap.parse_args()
-    rows = sweep(mesh=ns.mesh, delta_max_over_R=ns.delta_max_over_R, out="results")
+    return ap.parse_args(argv)
+
+
+def main(argv=None):
+    ns = arguments(argv)
+    print(f"solving {STUDY.name} ({ns.mesh} mesh, delta_max = {ns.delta_max_over_R:g} R); "
+          "progress on stderr", flush=True)
+    rows = sweep(mesh=ns.mesh, delta_max_over_R=ns.delta_max_over_R, out=ns.out / "results",
+                 progress=True)
     print("C01/C10   P* [N]  delta* [mm]  delta_dagger [mm]  P_dagger [N]   eta")
     for q, P, d, dd, Pd, eta in rows:
         print(f"{q:7.2f} {P:8.4f} {d:12.4f} {dd:18.4f} {Pd:13.4f} {eta:6.2f}")
-    figure(rows, title=f"Mooney-Rivlin base shell: R 20, t 3, h 20 mm, C10 0.3 MPa, gamma 30 "
-                       f"J/m$^2$; {ns.mesh} mesh, delta_max = {ns.delta_max_over_R:g} R")
-    print(f"wrote {FIGURE}")
+    path = ns.out / FIGURE
+    figure(rows, path, title=f"Mooney-Rivlin base shell: R 20, t 3, h 20 mm, C10 0.3 MPa, "
+                             f"gamma 30 J/m$^2$; {ns.mesh} mesh, delta_max = "
+                             f"{ns.delta_max_over_R:g} R")
+    print(f"wrote {path}")
+
+
+if __name__ == "__main__":
+    main()

@@ -5,13 +5,15 @@ rigid plane (axisymmetric finite elements and Maugis' energy method).
     case = sa.solve_case(R_mm=20, t_mm=3, h_mm=20, C10_MPa=0.3, gamma_J_m2=[30])
     case.to_dataset()             # curves along named dimensions, units on every variable
     ds = sa.open_results("results/paper.nc")
+    sa.run_study(sa.examples.paper_study(), out="results/")     # the paper's study, shipped
 
 The same functions serve the ``shell-adhesion`` command.  Subpackages:
 `shell_adhesion.solver` (one shell, pure computation, dimensionless inside),
 `shell_adhesion.study` (parameter studies on dask, the results cube, the command line),
-`shell_adhesion.catalogue` (the store of solved path sets).
+`shell_adhesion.catalogue` (the store of solved path sets); `shell_adhesion.examples` (the
+study files shipped with the package).
 """
-from importlib import import_module
+from importlib import import_module as _import_module
 
 from .solver import __version__
 
@@ -23,15 +25,18 @@ _LAZY = {
     "open_results": "shell_adhesion.study.analysis",
     "run_study": "shell_adhesion.study.run",
 }
+_SUBMODULES = ("examples",)      # `sa.examples` without an import of its own
 
-__all__ = ["__version__", *_LAZY]
+__all__ = ["__version__", *_LAZY, *_SUBMODULES]
 
 
 def __getattr__(name):
     if name in _LAZY:
-        return getattr(import_module(_LAZY[name]), name)
+        return getattr(_import_module(_LAZY[name]), name)
+    if name in _SUBMODULES:
+        return _import_module(f"shell_adhesion.{name}")
     raise AttributeError(f"module 'shell_adhesion' has no attribute {name!r}")
 
 
 def __dir__():
-    return sorted(set(globals()) | set(_LAZY))
+    return sorted(set(globals()) | set(_LAZY) | set(_SUBMODULES))

@@ -76,6 +76,14 @@ BAD = [
      "--material: 'ogden' must be one of neo-hookean, mooney-rivlin, yeoh, gent"),
     ("C20 not a number", None, CASE + ["--material", "yeoh", "--C20", "abc"],
      "--C20: 'abc' must be a number (MPa)"),
+    ("mistyped flag alone", None, ["case", "--gama", "30"],
+     "shell-adhesion case: error: --gama: not an option; did you mean --gamma?"),
+    ("mistyped flag", None, CASE + ["--gama", "30"], "--gama: not an option; did you mean --gamma?"),
+    ("mistyped flag with =", None, CASE + ["--delta_max=3"],
+     "--delta_max: not an option; did you mean --delta-max?"),
+    ("mistyped run flag", files("s.yaml", STUDY), ["run", "s.yaml", "--ouput", "r"],
+     "--ouput: not an option; did you mean --out?"),
+    ("mistyped --version", None, ["--verison"], "--verison: not an option; did you mean --version?"),
     ("YAML 1.2 number out of range", files("s.yaml", STUDY.replace("R_mm: 20", "R_mm: 1e200")),
      ["run", "s.yaml"], "R_mm: 1e+200 must be from 0.001 to 10000 mm"),
 ]
@@ -107,3 +115,11 @@ def test_help_still_works():
     assert out.returncode == 0 and "--h H" in out.stdout and "--delta-max" in out.stdout
     assert "-h 20" not in out.stdout        # the refused spellings are not advertised
     assert out.stdout.startswith("usage: shell-adhesion case")
+
+
+def test_flag_prefixes_still_accepted():
+    """A prefix of one flag is argparse's abbreviation, not a typo."""
+    from shell_adhesion.study.cli import _parser
+
+    ns = _parser().parse_args(CASE + ["--gam", "30", "--no-error", "--delta=2"])
+    assert ns.gamma == ["30"] and ns.no_error_bars and ns.delta_max == "2"

@@ -2,6 +2,7 @@
 import importlib.util
 import pathlib
 
+import numpy as np
 import pytest
 
 from shell_adhesion.solver.scaling import force_N
@@ -38,3 +39,19 @@ def test_ex03_mooney_rivlin():
     assert -1.9 < P0 < -1.5 and P1 < P0 < 0
     assert dd0 < dd1 < 0
     assert eta1 > eta0
+
+
+def test_ex03_writes_where_it_is_told(tmp_path):
+    """The figure goes to --out (default: the working folder), never over the tracked
+    docs/figures/mooney_rivlin.png."""
+    spec = importlib.util.spec_from_file_location("ex03", EXAMPLES / "ex03_mooney_rivlin.py")
+    ex = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(ex)
+    assert ex.arguments([]).out == pathlib.Path(".")
+    assert ex.arguments(["--out", str(tmp_path)]).out == tmp_path
+    tracked = EXAMPLES.parent / "docs" / "figures" / ex.FIGURE
+    before = tracked.read_bytes() if tracked.exists() else None
+    rows = np.array([[0.0, -1.7, -0.56, -0.68, -1.64, 8.0], [0.5, -2.0, -0.5, -0.6, -1.9, 8.5]])
+    ex.figure(rows, tmp_path / "sub" / ex.FIGURE)
+    assert (tmp_path / "sub" / ex.FIGURE).stat().st_size > 0
+    assert (tracked.read_bytes() if tracked.exists() else None) == before

@@ -8,20 +8,25 @@
     shell-adhesion tables results/paper.nc [--format md|csv|tex] [--table cases|paper|all] [--out FILE]
     shell-adhesion plot results/paper.nc [--out DIR] [--format png,pdf] [--dpi 150]
     shell-adhesion analyse results/paper.nc
+    shell-adhesion example paper|mooney-rivlin > workflow.yaml
+    shell-adhesion --version
 
 `tables`, `plot` and `analyse` read a results cube and never run the solver.
 
 Bad input prints one line naming the flag, the value and the rule, and exits with 2,
 before any computation and without creating anything.  The rules are the solver's
 (`study.case.case_input` for `case`, `study.config` for study files).  `case` has no
-`-h`: the depth is `--h`, help is `--help`.
+`-h`: the depth is `--h`, help is `--help`.  A mistyped flag gets the nearest one
+("did you mean --gamma?").
 """
 import argparse
+import difflib
 import os
 from pathlib import Path
 import sys
 import time
 
+from shell_adhesion import examples
 from shell_adhesion.solver import INTERFACES, ConvergenceError, InputError, __version__
 from shell_adhesion.solver.path import MaterialLimitError
 
@@ -42,8 +47,31 @@ MATERIAL_FLAGS = (("C01", "C01_MPa", "MPa"), ("C20", "C20_MPa", "MPa"), ("C30", 
 
 
 class _Parser(argparse.ArgumentParser):
+    """argparse with one-line errors, and a flag's nearest spelling for a mistyped one."""
+
     def error(self, message):
         self.exit(2, f"{self.prog}: error: {message}\n")
+
+    def parse_known_args(self, args=None, namespace=None):
+        args = sys.argv[1:] if args is None else list(args)
+        self._check_flags(args)
+        return super().parse_known_args(args, namespace)
+
+    def _check_flags(self, args):
+        """Refuse a `--flag` this parser does not know, naming the one it resembles,
+        before argparse reports missing arguments instead.  A command's own flags are
+        its subparser's to check; prefixes (`--gam`) are argparse's to resolve."""
+        flags = [f for a in self._actions for f in a.option_strings if f.startswith("--")]
+        commands = any(isinstance(a, argparse._SubParsersAction) for a in self._actions)
+        for arg in args:
+            if arg == "--" or (commands and not arg.startswith("-")):
+                return
+            name = arg.split("=", 1)[0]
+            if not name.startswith("--") or any(f.startswith(name) for f in flags):
+                continue
+            close = difflib.get_close_matches(name, flags, n=1)
+            if close:
+                self.error(f"{name}: not an option; did you mean {close[0]}?")
 
 
 class _OneDash(argparse.Action):
@@ -270,6 +298,11 @@ def _run_plot(ns):
     return 0
 
 
+def _run_example(ns):
+    sys.stdout.write(examples.study_text(ns.name))
+    return 0
+
+
 def _run_analyse(ns):
     from .analysis import open_results, summary
 
@@ -280,7 +313,7 @@ def _run_analyse(ns):
 def _parser():
     parser = _Parser(prog="shell-adhesion",
                      description="Adhesion of a soft hyperelastic spherical-cap shell on a rigid plane.")
-    parser.add_argument("--version", action="version", version=__version__)
+    parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     case = sub.add_parser("case", help="solve one shell: loading curve, and pull-off for each --gamma",
                           add_help=False)
@@ -364,6 +397,11 @@ def _parser():
     ana = sub.add_parser("analyse", aliases=["summary"],
                          help="trends of |P*|, eta fit, slope in gamma, JKR ratio of a results cube")
     ana.add_argument("results", help="results netCDF written by `run` (results/<name>.nc)")
+    ex = sub.add_parser("example", help="print a study file shipped with the package (paper: "
+                                        "the paper's study, the repository's workflow.yaml)")
+    ex.add_argument("name", choices=tuple(examples.STUDIES),
+                    help="paper or mooney-rivlin; e.g. `shell-adhesion example paper > "
+                         "workflow.yaml`")
     return parser
 
 
@@ -428,6 +466,8 @@ def main(argv=None):
             return _run_analyse(ns)
         if ns.command == "catalogue":
             return _run_catalogue(ns)
+        if ns.command == "example":
+            return _run_example(ns)
     except InputError as err:
         print(f"shell-adhesion: error: {err}", file=sys.stderr)
         return 2

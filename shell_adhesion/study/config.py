@@ -240,7 +240,10 @@ def load_study(path) -> Study:
         with path.open("rb") as f:
             data = f.read(MAX_BYTES + 1)
     except OSError as e:
-        raise StudyError(f"cannot read the study file ({e.strerror or e})") from None
+        # the absolute path: a relative name is read from the working folder, which may
+        # not be the one the caller had in mind
+        raise StudyError(f"cannot read the study file {path.absolute()} "
+                         f"({e.strerror or e})") from None
     if len(data) > MAX_BYTES:
         raise StudyError(f"the study file is over {MAX_BYTES // 1_000_000} MB ({MAX_BYTES} "
                          "bytes at most): a study is a few lines of YAML")

@@ -7,6 +7,8 @@ import pytest
 
 from shell_adhesion.solver.scaling import force_N
 
+from validation import within
+
 EXAMPLES = pathlib.Path(__file__).parent.parent / "examples"
 
 
@@ -39,6 +41,22 @@ def test_ex03_mooney_rivlin():
     assert -1.9 < P0 < -1.5 and P1 < P0 < 0
     assert dd0 < dd1 < 0
     assert eta1 > eta0
+    # docs/materials.md, each number to its last digit
+    for name, value, stated, unit in (("P* at C01 = 0", P0, -1.705, 1e-3),
+                                      ("P* at C01 = C10/2", P1, -1.837, 1e-3),
+                                      ("delta_dagger at C01 = 0", dd0, -0.680, 1e-3),
+                                      ("delta_dagger at C01 = C10/2", dd1, -0.516, 1e-3),
+                                      ("eta at C01 = 0", eta0, 9.38, 0.01),
+                                      ("eta at C01 = C10/2", eta1, 11.57, 0.01)):
+        within(name, value, stated, 0.0, floor=unit)
+    # the I2 term adds nothing beyond mu0 here: neo-Hooke with C10 = 0.45 MPa (the same
+    # mu0) within 0.025 % (P*) and 0.066 % (delta_dagger) of Mooney-Rivlin C01 = C10/2
+    import shell_adhesion as sa
+    nh = sa.solve_case(20, 3, 20, 0.45, [30], mesh="coarse", delta_max_mm=3.0, progress=False,
+                       error_bars=False).to_dict()["pull_off"][0]
+    within("neo-Hooke C10 = 0.45 MPa P*", nh["fixed_load"]["P_N"], P1, 2 * 2.5e-4)
+    within("neo-Hooke C10 = 0.45 MPa delta_dagger", nh["fixed_grips"]["delta_mm"], dd1,
+           2 * 6.6e-4)
 
 
 def test_ex03_writes_where_it_is_told(tmp_path):

@@ -68,3 +68,15 @@ def test_base_shell_does_not_invert(base_coarse):
     ps, _, _ = base_coarse
     assert ps.stats["inverted_paths"] == 0 and ps.stats["inversion_stage"] is None
     assert not ps.inverted(np.linspace(0, 0.5, 11)).any()
+
+
+def test_a_curve_ended_by_inverted_paths_says_so(thin):
+    """A curve not bracketed at large a names the inverted paths held beyond its end (the
+    energy method of a contact disc ends at an inversion), and only those."""
+    ps, _, _ = thin
+    beyond = ps._why_the_curve_ends(0.03)
+    assert "the 7 relaxation paths held beyond it (a = 0.04609 to 0.09202 R) invert" in beyond
+    assert "invert" not in ps._why_the_curve_ends(0.2)
+    with pytest.raises(ValueError, match="stopped by its depth bound delta_max") as e:
+        ps.pull_off(0.003)
+    assert "invert" not in str(e.value)     # its inverted paths lie inside the curve

@@ -264,16 +264,14 @@ class PathSet:
         raise instead).
         """
         check_gamma(gamma, self.gamma_max)
+        eq = None
         try:
             eq = equilibrium(surface or self.surface(), gamma)
             po = pull_off(eq)
         except NotBracketed as e:
-            if e.side == "large" and not self.stats.get("loading_reached_a", False):
-                why = self.stats.get("loading_stopped_by") or "its depth bound delta_max"
-                e.args = (f"{e}; the loading (no adhesion) ended at delta = "
-                          f"{self.stats.get('delta_reached', self.loading_delta[-1]):.4g} R "
-                          f"with the contact radius a = {self.loading_a[-1]:.4g} R "
-                          f"(largest: {self.loading_a.max():.4g} R), stopped by {why}",)
+            if e.side == "large":
+                end = None if eq is None else float(np.max(eq.a))
+                e.args = (f"{e}{self._why_the_curve_ends(end)}",)
             raise
         limit = UNIFORM_SHARE * self.uniform_radius
         for name, a in (("a*", po.a_star), ("a_dagger", po.a_dagger)):
@@ -295,6 +293,27 @@ class PathSet:
                 po = replace(po, P_dagger=np.nan, delta_dagger=np.nan, a_dagger=np.nan,
                              note=f"fixed grips not given: {error}")
         return eq, po
+
+    def _why_the_curve_ends(self, a_end: float = None) -> str:
+        """What ends an equilibrium curve (at a_end / R, if known) on its large-a side:
+        relaxation paths held beyond it whose contact zone inverted (the energy method of
+        a contact disc ends at the inversion), and a loading that stopped before the
+        contact radius the request aimed at."""
+        why = ""
+        flipped = sorted(r.a for r in self.relaxations
+                         if r.centre_lifts and (a_end is None or r.a > a_end))
+        if flipped:
+            why += (f"; the {len(flipped)} relaxation paths held beyond it (a = "
+                    f"{flipped[0]:.4g} to {flipped[-1]:.4g} R) invert (the centre of their "
+                    f"contact zone leaves the plane: the paper's buckling) before G reaches "
+                    f"gamma, and the energy method of a contact disc ends at an inversion")
+        if not self.stats.get("loading_reached_a", False):
+            stop = self.stats.get("loading_stopped_by") or "its depth bound delta_max"
+            why += (f"; the loading (no adhesion) ended at delta = "
+                    f"{self.stats.get('delta_reached', self.loading_delta[-1]):.4g} R "
+                    f"with the contact radius a = {self.loading_a[-1]:.4g} R "
+                    f"(largest: {self.loading_a.max():.4g} R), stopped by {stop}")
+        return why
 
     def _bridged(self, gamma, name, a, gap) -> Bridged:
         """Why the curve for gamma is bridged at the pair radii `gap` near the pull-off

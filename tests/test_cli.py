@@ -47,3 +47,12 @@ def test_json_case_with_adhesion():
     assert {"a_mm", "delta1_mm", "P1_N", "delta_mm", "P_N", "U_E_mJ"} <= set(data["relaxation"][0])
     prov = data["provenance"]
     assert prov["dofs"] > 0 and prov["newton_iterations"] > 0 and prov["mesh"] == "coarse"
+
+
+def test_no_error_bars_asked_prints_no_missing_error_bar():
+    """With --no-error-bars every number is printed bare; a missing error bar is only
+    announced when error bars were asked for."""
+    out = run(*BASE, "--mesh", "coarse", "--gamma", "30", "--no-error-bars")
+    assert out.returncode == 0, out.stderr
+    line = next(l for l in out.stdout.splitlines() if l.startswith("gamma = 30"))
+    assert "P* = -1.71" in line and "+-" not in line and "no error bar" not in line

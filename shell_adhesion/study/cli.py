@@ -118,20 +118,21 @@ def _run_case(ns):
     return 1 if result.refused else 0       # every answer is printed; a refusal fails
 
 
-def _pm(group, name, unit=" mm"):
+def _pm(group, name, unit=" mm", asked=True):
     """'value unit', or 'value +- error unit' when the error bar is known ('no error bar'
-    when it is not: the pull-off's error_note says why)."""
+    when it is not: the pull-off's error_note says why; nothing when none was asked)."""
     err = group.get(f"{name}_error")
-    return (f"{group[name]:.4f}{unit} (no error bar: the coarser meshes do not give it)"
-            if err is None
-            else f"{group[name]:.4f} +- {err:.2g}{unit}")
+    if err is not None:
+        return f"{group[name]:.4f} +- {err:.2g}{unit}"
+    return f"{group[name]:.4f}{unit}" + (" (no error bar: the coarser meshes do not give it)"
+                                         if asked else "")
 
 
-def _a0(po):
+def _a0(po, asked=True):
     """a0 with its error bar, or why it is undefined."""
     if po["a0_mm"] is None:
         return "undefined (the equilibrium curve ends before P = 0)"
-    return _pm(po, "a0_mm")
+    return _pm(po, "a0_mm", asked=asked)
 
 
 def _print_case(out):
@@ -165,12 +166,17 @@ def _print_case(out):
             print(f"gamma = {po['gamma_J_m2']:g} J/m^2: {po['status']}: {po['reason']}")
             continue
         fl, fg = po["fixed_load"], po["fixed_grips"]
-        grips = (f"fixed grips P = {_pm(fg, 'P_N', ' N')}, delta = {_pm(fg, 'delta_mm')}, "
-                 f"a = {_pm(fg, 'a_mm')}" if fg["P_N"] is not None
+        asked = out["provenance"].get("error_bars") is not None
+
+        def pm(group, name, unit=" mm"):
+            return _pm(group, name, unit, asked)
+
+        grips = (f"fixed grips P = {pm(fg, 'P_N', ' N')}, delta = {pm(fg, 'delta_mm')}, "
+                 f"a = {pm(fg, 'a_mm')}" if fg["P_N"] is not None
                  else "fixed grips not given (below)")
-        print(f"gamma = {po['gamma_J_m2']:g} J/m^2: fixed load P* = {_pm(fl, 'P_N', ' N')}, "
-              f"delta* = {_pm(fl, 'delta_mm')}, a* = {_pm(fl, 'a_mm')}; {grips}; "
-              f"a0 = {_a0(po)}; eta = {po['eta']:.3g}"
+        print(f"gamma = {po['gamma_J_m2']:g} J/m^2: fixed load P* = {pm(fl, 'P_N', ' N')}, "
+              f"delta* = {pm(fl, 'delta_mm')}, a* = {pm(fl, 'a_mm')}; {grips}; "
+              f"a0 = {_a0(po, asked)}; eta = {po['eta']:.3g}"
               + (f" +- {po['eta_error']:.2g}" if po.get("eta_error") is not None else ""))
         for note in (po.get("reason"), po.get("error_note")):
             if note:

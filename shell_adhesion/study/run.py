@@ -45,6 +45,7 @@ from .config import StudyError, load_study, validate
 from .keys import relaxation_part, solver_source_sha256
 from .plan import Plan, Shell, make_plan, served_key
 from .products import Products, kept_products, record_products, recorded_inputs, write_products
+from .cost import estimate_s
 from .progress import Progress
 
 DEFAULT_OUT = "results"
@@ -819,13 +820,14 @@ def dry_run(study, catalogue=None, workers=None, scheduler=None) -> str:
     lines = [f"study {study.name} ({study.source}): {len(plan.points)} requested points, "
              f"{len(plan.all_shells)} distinct FE problems (path sets of one t/R, h/R each); "
              f"interface {study.interface}, mesh {study.mesh}, "
-             f"delta_max/R {study.delta_max_over_R:g}",
+             + (f"delta_max/R {study.delta_max_over_R:g}" if study.delta_max_over_R is not None
+                else "loading as deep as the pull-offs need"),
              *_cavity_lines(plan),
              f"catalogue {directory}: holds {held} of them, {todo} to compute"
              + (f" ({parts} relaxation paths kept from an interrupted run)" if parts else "")]
     if todo == 0:
         lines.append("estimate: nothing to compute (no cluster is started)")
-    elif times:
+    elif times and study.delta_max_over_R is not None:
         # cost of a set ~ its loading + relaxations, scaled by delta_max/R (more states)
         per = [(r["loading_s"] + (r["relaxation_s"] or 0.0))
                * study.delta_max_over_R / r["delta_max_over_R"] for r in times]
@@ -835,6 +837,19 @@ def dry_run(study, catalogue=None, workers=None, scheduler=None) -> str:
                      "sets of this mesh and interface, scaled by delta_max/R)"
                      + (f", at best {cpu / n:.0f} s on {n} workers" if n else ""))
     else:
-        lines.append(f"estimate: none (the catalogue records no timing for mesh {study.mesh}, "
-                     f"interface {study.interface})")
+        todo_shells = [s for s in plan.all_shells if not _held(directory, s)]
+        cpu, dofs, paths = estimate_s(todo_shells)
+        n = workers or (None if scheduler else _cpu_count())
+        lines.append(f"estimate: about {cpu:.0f} s of FE work from the cost model ({dofs} dofs "
+                     f"and about {paths} relaxation paths in all; no timing of this mesh and "
+                     "interface recorded in the catalogue)"
+                     + (f", at best {cpu / n:.0f} s on {n} workers" if n else ""))
     return "\n".join(lines)
+
+
+def _held(directory: Path, shell) -> bool:
+    """Whether the catalogue in `directory` holds the shell's path set (by its index)."""
+    if not (directory / INDEX).exists():
+        return False
+    with Catalogue(directory, create=False) as cat:
+        return bool(cat.candidates(shell.key))

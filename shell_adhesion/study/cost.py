@@ -1,0 +1,44 @@
+"""A cost model of the FE work of a plan, for `run --dry-run` on a catalogue that has no
+recorded timings: each path set costs about COST_S_PER_DOF_PATH x dofs x (relaxation
+paths + LOADING_PATHS), the dofs and the paths counted on the mesh its request gives
+(solver.request.initial_fit) before anything is solved.  An estimate, said as one.
+"""
+import math
+
+import numpy as np
+
+from ..solver.geometry import Cap
+from ..solver.mesh import cap_mesh, mesh_spec
+from ..solver.request import initial_fit
+
+# measured on the base shell (default mesh, 5614 dofs, 66 relaxation paths): its loading
+# and pull-off in one process, 8.0 s (benchmarks/pull_off.py default 1, 2026-12-02)
+COST_S_PER_DOF_PATH = 1.9e-5
+LOADING_PATHS = 10          # the loading costs about as much as this many paths
+
+
+def shell_size(t_over_R: float, h_over_R: float, mesh: str, request) -> tuple:
+    """(dofs, relaxation paths) of one path set, counted before solving: the mixed Q2/Q1
+    unknowns of its mesh and the element-corner nodes of the outer surface out to the
+    contact radius its loading aims at (one relaxation path per contact event)."""
+    cap = Cap(t_over_R, h_over_R)
+    fit = initial_fit(cap, request)
+    cm = cap_mesh(cap, mesh_spec(mesh, fit.uniform))
+    n2 = cm.nodes.shape[1]
+    corners = np.unique(cm.mesh.t[:4]).size          # the Q1 pressure nodes
+    dofs = 2 * n2 + corners
+    a_end = fit.a_stop if fit.a_stop is not None else math.sqrt(min(2 * fit.delta_max, 1.0))
+    r_outer = cm.nodes[0, cm.outer]
+    paths = int(((r_outer <= a_end) & cm.outer_corner).sum())
+    return dofs, paths
+
+
+def estimate_s(shells) -> tuple:
+    """(FE seconds on one core, dofs summed, paths summed) of the plan's shells to solve."""
+    dofs_paths, dofs_all, paths_all = 0.0, 0, 0
+    for s in shells:
+        dofs, paths = shell_size(s.t_over_R, s.h_over_R, s.key["mesh"], s.request)
+        dofs_paths += dofs * (paths + LOADING_PATHS)
+        dofs_all += dofs
+        paths_all += paths
+    return COST_S_PER_DOF_PATH * dofs_paths, dofs_all, paths_all

@@ -1,6 +1,9 @@
 """Progress of a study run: one line per stage with done/total and elapsed time.
 
-The totals are fixed when the plan is made; a count never runs past its total.  On a
+The totals are fixed when the plan is made; a count never runs past its total.  The
+relaxation stage also counts paths: done/total, the total an estimate (~: study.cost
+before a set's loading, and a set fitted further to its request adds paths) until every
+set is done, and an ETA once a few have finished.  On a
 terminal the lines are redrawn in place; elsewhere (a log file) a stage's line is printed
 when it starts, at most every `every_s` seconds while it runs, and when it is complete.
 """
@@ -11,6 +14,18 @@ import time
 def _clock(seconds: float) -> str:
     m, s = divmod(int(seconds), 60)
     return f"{m}:{s:02d}" if m < 60 else f"{m // 60}:{m % 60:02d}:{s:02d}"
+
+
+ETA_AFTER = 3       # tasks finished before an ETA is shown
+
+
+def path_eta(t0: float, finished: int, remaining: int, now: float = None) -> str:
+    """', ETA m:ss' from the pace of the tasks finished since t0 (time.perf_counter()),
+    once ETA_AFTER have finished; '' before, and when nothing remains."""
+    if t0 is None or finished < ETA_AFTER or remaining <= 0:
+        return ""
+    now = time.perf_counter() if now is None else now
+    return f", ETA {_clock((now - t0) / finished * remaining)}"
 
 
 class Stage:

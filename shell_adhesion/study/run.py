@@ -45,8 +45,8 @@ from .config import StudyError, load_study, validate
 from .keys import relaxation_part, solver_source_sha256
 from .plan import Plan, Shell, make_plan, served_key
 from .products import Products, kept_products, record_products, recorded_inputs, write_products
-from .cost import estimate_s
-from .progress import Progress
+from .cost import estimate_s, shell_size
+from .progress import Progress, path_eta
 
 DEFAULT_OUT = "results"
 CONNECT_TIMEOUT_S = 10.0    # a scheduler that does not answer in this time is not there
@@ -265,6 +265,7 @@ class _Job:
     seconds: float = 0.0
     remaining: int = 0
     done: bool = False
+    expected: int = 0           # relaxation paths the cost model expects before its loading
 
 
 @dataclass
@@ -310,18 +311,27 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
         owner[f] = (job, None)
         pending.add(f)
 
+    jobs, t_start = [], time.perf_counter()
     for s in shells:
         job = _Job(s, time.perf_counter(), initial_fit(Cap(s.t_over_R, s.h_over_R), s.request))
+        job.expected = shell_size(s.t_over_R, s.h_over_R, s.key["mesh"], s.request)[1]
+        jobs.append(job)
         load(job)
     n_shells = len(shells)
     shells_done = 0
     progress.start("loading paths")
 
     def relax_note():
-        note = f"{tally.relaxations_computed} paths solved"
+        # the paths of a set are known once its loading is in, and may grow while it is
+        # fitted further (solver.request): the total is an estimate until every set is done
+        done = tally.relaxations_computed + tally.relaxations_reused
+        total = max(done, sum(len(j.starts) if j.loading is not None else j.expected
+                              for j in jobs if not j.done) + sum(
+            len(j.relaxations or ()) for j in jobs if j.done))
+        note = f"{done}/{'' if all(j.done for j in jobs) else '~'}{total} paths"
         if tally.relaxations_reused:
-            note += f", {tally.relaxations_reused} kept from an earlier run"
-        return note
+            note += f" ({tally.relaxations_reused} kept from an earlier run)"
+        return note + path_eta(t_start, tally.relaxations_computed, total - done)
 
 
     def close(job):

@@ -22,4 +22,3 @@ numpydoc_validation_checks = set()
 html_theme = "pydata_sphinx_theme"
 html_title = f"shell-adhesion {version}"
 html_theme_options = {"navigation_with_keys": False, "show_toc_level": 2}
-suppress_warnings = ["myst.header"]

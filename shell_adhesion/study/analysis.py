@@ -325,7 +325,7 @@ def _with_unit(value, unit):
 
 
 def trend(ds: xr.Dataset, dim: str, var: str = "P_star") -> Trend:
-    """Verdict on |var| along `dim` (other dimensions at the base), with the mesh
+    """Verdict on abs(`var`) along `dim` (other dimensions at the base), with the mesh
     uncertainty of `mesh_uncertainty` on each value, and the paper's claim for P*."""
     x = along(ds, var, dim)
     u = mesh_uncertainty(ds)
@@ -481,7 +481,7 @@ def _held_P_at_zero(ds, point, a_mm):
 
 
 def paper_comparison(ds: xr.Dataset) -> Comparison:
-    """Our numbers beside the paper's (DESIGN.md section 4) for what the cube can answer.
+    """Our numbers beside the paper's (base shell, Fig. 6) for what the cube can answer.
 
     Only for a study whose base is the paper's shell; otherwise no rows.  The paper's a*,
     delta*, P_dagger and a_dagger are node values on a flat curve, so its (a, delta, P)

@@ -455,7 +455,7 @@ def _value_label(dim, v):
 
 
 def fig_pull_off(ds, axes=None):
-    """Fig. 6b: |P*| against each swept parameter (with its error bar when the cube has
+    """Fig. 6b: abs(P*) against each swept parameter (with its error bar when the cube has
     them), with JKR (1.5 pi R gamma) and the linear-shell law eq. 3 with eta fitted over the
     evaluated shells (t/R < 1; all points if there are none).  Four Axes."""
     _any_ok(ds)

@@ -697,7 +697,7 @@ def run_study(study, *, out=None, catalogue=None, scheduler=None, progress=True,
     Parameters
     ----------
     study : str, path-like or dict
-        A study YAML file, or a dict of the same schema (README, "Studies"): R_mm [mm],
+        A study YAML file, or a dict of the same schema (see "Parameter studies"): R_mm [mm],
         C10_MPa [MPa], t_over_R and h_over_R [1], gamma_J_m2 [J/m^2], ...
     out : str or path-like, optional
         Output folder (created if needed; default ``results``).  The cube is

@@ -111,6 +111,18 @@ def test_bad_flags(tmp_path, capsys):
     assert "--t" in capsys.readouterr().err
 
 
+def test_too_deep(tmp_path, capsys):
+    """A curve loaded beyond the shell's supported depth (R/4 here): one line, exit 2."""
+    ex = example()
+    d, P = ex.synthetic_curve("coarse")
+    csv = tmp_path / "deep.csv"
+    ex.write_csv(csv, 4 * d, P)
+    code = main(["fit", "--R", "20", "--t", "3", "--h", "20", "--curve", str(csv),
+                 "--mesh", "coarse"])
+    err = capsys.readouterr().err
+    assert code == 2 and err.count("\n") == 1 and "beyond the supported 5 mm" in err
+
+
 def test_bad_curve_api():
     with pytest.raises(InputError, match="row 4: P_N"):
         fit_curve(20, 3, 20, ([0, 0.1, 0.2, 0.3, 0.4], [0, 1, float("nan"), 2, 3]))

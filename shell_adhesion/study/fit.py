@@ -178,19 +178,20 @@ class FitResult:
             "input": dict(R_mm=R, t_mm=inp.t_mm, h_mm=inp.h_mm, curve=inp.source,
                           points=len(inp.delta_mm), pull_off_N=inp.pull_off_N,
                           interface=inp.interface, mesh=inp.mesh),
-            "C10_MPa": e.C10, "C10_MPa_ci95": list(e.C10_ci),
-            "gamma_J_m2": self.gamma_J_m2,
-            "gamma_J_m2_ci95": [g * R * 1e3 for g in e.gamma_ci],
+            "C10_MPa": float(e.C10), "C10_MPa_ci95": [float(c) for c in e.C10_ci],
+            "gamma_J_m2": float(self.gamma_J_m2),
+            "gamma_J_m2_ci95": [float(g * R * 1e3) for g in e.gamma_ci],
             "gamma_from": e.gamma_from,
-            "delta0_mm": self.delta0_mm, "delta0_mm_ci95": [v * R for v in e.x0_ci],
+            "delta0_mm": float(self.delta0_mm),
+            "delta0_mm_ci95": [float(v * R) for v in e.x0_ci],
             "residual_rms_N": float(np.sqrt(np.mean(e.residuals ** 2))) * R ** 2,
             "points_used": dict(e.used),
             "intervals": "95 %, linearised: s^2 (J^T J)^-1 from the least-squares Jacobian "
                          "and residuals, Student t; without the mesh's own error"
                          + ("; gamma's from C10's only (the pull-off force taken as exact)"
                             if e.gamma_from == "pull_off" else ""),
-            "jkr": {"E_MPa": youngs_modulus_MPa(C10_j), "C10_MPa": C10_j,
-                    "gamma_J_m2": gh_j * C10_j * R * 1e3, "delta0_mm": x0_j * R,
+            "jkr": {"E_MPa": float(youngs_modulus_MPa(C10_j)), "C10_MPa": float(C10_j),
+                    "gamma_J_m2": float(gh_j * C10_j * R * 1e3), "delta0_mm": float(x0_j * R),
                     "method": "Hertz fit of the loading (E* = 8 C10 = 4 E / 3), gamma from "
                               "JKR's P* = -(3/2) pi R gamma with P* the most tensile force"
                               + (" (the pull-off force given)" if inp.pull_off_N is not None
@@ -254,6 +255,7 @@ def fit_checked(inp: FitInput) -> FitResult:
     first, _, _ = solve_request(cap.t, cap.h, Request.serving(None, depth), GAMMA_MAX,
                                 inp.interface, inp.mesh)
     start = solver_fit.fit_loading(first, x, p, jkr[:2])
+    _check_reach(x.max() - start[1], cap, inp)
     gamma_max = _gamma_max(jkr, start[0])
     solves = [dict(delta_max_over_R=float(first.delta_max), loading_only=True,
                    solve_s=round(time.perf_counter() - t0, 3))]
@@ -265,8 +267,7 @@ def fit_checked(inp: FitInput) -> FitResult:
         try:
             est = solver_fit.fit_curve(ps, x, p, p_pull, hertz=start)
         except solver_fit.TooDeep as e:
-            if depth >= delta_bound(cap):
-                raise
+            _check_reach(e.x_turn, cap, inp)
             depth = min(delta_bound(cap), max(depth, e.x_turn) * DEPTH_MARGIN)
             solves.append(dict(delta_max_over_R=float(ps.delta_max), solve_s=round(t2 - t1, 3)))
             continue
@@ -298,6 +299,17 @@ def _depth(x, p, cap: Cap, source) -> float:
     depth = min(max(depth, 1e-3), bound)
     check_delta_max(depth, cap.h, f"{source}: the depth delta/R", t_over_R=cap.t)
     return depth
+
+
+def _check_reach(x_turn, cap: Cap, inp: FitInput):
+    """InputError if the curve goes deeper from contact than the shell's supported depth."""
+    bound = delta_bound(cap)
+    if x_turn > bound * (1 + 1e-9):
+        R = inp.R_mm
+        raise InputError(f"{inp.source}: the curve goes {x_turn * R:.4g} mm deep from contact "
+                         f"(delta0 = {(inp.delta_mm.max() / R - x_turn) * R:.4g} mm from its "
+                         f"loading), beyond the supported {bound * R:.4g} mm for this shell "
+                         f"(delta/R <= {bound:g})")
 
 
 def _gamma_max(jkr, C10) -> float:

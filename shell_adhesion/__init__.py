@@ -4,6 +4,7 @@ rigid plane (axisymmetric finite elements and Maugis' energy method).
     import shell_adhesion as sa
     case = sa.solve_case(R_mm=20, t_mm=3, h_mm=20, C10_MPa=0.3, gamma_J_m2=[30])
     case.to_dataset()             # curves along named dimensions, units on every variable
+    fit = sa.fit_curve(R_mm=20, t_mm=3, h_mm=20, curve="test.csv")   # C10, gamma of a test
     ds = sa.open_results("results/paper.nc")
     sa.run_study(sa.examples.paper_study(), out="results/")     # the paper's study, shipped
 
@@ -24,6 +25,7 @@ _LAZY = {
     "CaseResult": "shell_adhesion.study.case",
     "open_results": "shell_adhesion.study.analysis",
     "run_study": "shell_adhesion.study.run",
+    "fit_curve": "shell_adhesion.study.fit",
 }
 _SUBMODULES = ("examples",)      # `sa.examples` without an import of its own
 

@@ -3,6 +3,8 @@
     shell-adhesion case --R 20 --t 3 --h 20 --C10 0.3 [--gamma 30 ...] [--json]
         [--material neo-hookean|mooney-rivlin|yeoh|gent] [--C01 C] [--C20 C] [--C30 C]
         [--Jm J] [--D1 D]
+    shell-adhesion fit --R 20 --t 3 --h 20 --curve test.csv [--pull-off-N P] [--json]
+        [--plot fit.png]
     shell-adhesion run workflow.yaml --out results/ [--scheduler ADDRESS] [--catalogue DIR]
     shell-adhesion catalogue list|rebuild [--catalogue DIR]
     shell-adhesion tables results/paper.nc [--format md|csv|tex] [--table cases|paper|all] [--out FILE]
@@ -116,6 +118,59 @@ def _run_case(ns):
     else:
         _print_case(result.to_dict())
     return 1 if result.refused else 0       # every answer is printed; a refusal fails
+
+
+FIT_FLAGS = dict(R_mm="--R", t_mm="--t", h_mm="--h", curve="--curve",
+                 pull_off_N="--pull-off-N", interface="--interface", mesh="--mesh")
+
+
+def _run_fit(ns):
+    """`fit`: C10 and gamma of one shell from a measured curve (study.fit)."""
+    from . import fit as fit_api
+
+    if ns.plot is not None:
+        _check_figure_path(ns.plot)
+    inp = fit_api.fit_input(_number("--R", ns.R, "mm"), _number("--t", ns.t, "mm"),
+                            _number("--h", ns.h, "mm"), ns.curve,
+                            None if ns.pull_off_N is None
+                            else _number("--pull-off-N", ns.pull_off_N, "N"),
+                            ns.interface, ns.mesh, names=FIT_FLAGS)
+    result = fit_api.fit_checked(inp)
+    if ns.plot is not None:
+        fit_api.plot_fit(result, ns.plot)
+    out = result.to_dict()
+    if ns.json:
+        print(result.to_json())
+    else:
+        _print_fit(out)
+    return 0
+
+
+def _check_figure_path(path):
+    out = Path(path)
+    if out.suffix.lstrip(".").lower() not in FIGURE_FORMATS:
+        raise InputError(f"--plot: {path}: the file name must end in "
+                         f"{', '.join('.' + f for f in FIGURE_FORMATS)}")
+    if not out.parent.is_dir():
+        raise InputError(f"--plot: {path}: the folder {out.parent} does not exist")
+
+
+def _print_fit(out):
+    inp, j, used = out["input"], out["jkr"], out["points_used"]
+    ci = lambda v: f"[{v[0]:.4g}, {v[1]:.4g}]"
+    print(f"shell R = {inp['R_mm']:g} mm, t = {inp['t_mm']:g} mm, h = {inp['h_mm']:g} mm, "
+          f"interface {inp['interface']}, mesh {inp['mesh']}; curve {inp['curve']}")
+    print(f"C10    = {out['C10_MPa']:.5g} MPa    95 % {ci(out['C10_MPa_ci95'])}")
+    print(f"gamma  = {out['gamma_J_m2']:.5g} J/m^2  95 % {ci(out['gamma_J_m2_ci95'])} "
+          f"(from the {out['gamma_from'].replace('_', '-')})")
+    print(f"delta0 = {out['delta0_mm']:.4g} mm     95 % {ci(out['delta0_mm_ci95'])}")
+    print(f"residual rms {out['residual_rms_N']:.3g} N; points used: {used['loading']} loading, "
+          f"{used['retraction']} retraction, {used['after_pull_off']} after the jump-off left out")
+    print(f"half-space (Hertz + JKR): E = {j['E_MPa']:.4g} MPa (C10 = {j['C10_MPa']:.4g} MPa), "
+          f"gamma = {j['gamma_J_m2']:.4g} J/m^2, delta0 = {j['delta0_mm']:.4g} mm")
+    print(f"intervals: {out['intervals']}")
+    p = out["provenance"]
+    print(f"{p['dofs']} dofs, {len(p['solves'])} solve(s) of the paths, {p['wall_s']:.1f} s")
 
 
 def _pm(group, name, unit=" mm", asked=True):
@@ -362,6 +417,25 @@ def _parser():
     case.add_argument("--no-error-bars", dest="no_error_bars", action="store_true",
                       help="skip the second, coarser mesh that gives every number its "
                            "discretisation error bar (about 25 %% faster)")
+    fit = sub.add_parser("fit", help="C10 and gamma of one shell from a measured "
+                                     "force-displacement curve", add_help=False)
+    fit.add_argument("--help", action="help", help="show this help message and exit")
+    for flag in ("-R", "-t", "-h"):
+        fit.add_argument(flag, action=_OneDash, nargs="?", help=argparse.SUPPRESS)
+    fit.add_argument("--R", required=True, help="outer radius of curvature R [mm]")
+    fit.add_argument("--t", required=True, help="shell thickness t [mm]")
+    fit.add_argument("--h", required=True, help="depth h from apex to base plane [mm]")
+    fit.add_argument("--curve", required=True, metavar="FILE.csv",
+                     help="measured curve: CSV with the header delta_mm,P_N, rows in time "
+                          "order (approach, then retraction); P > 0 compression")
+    fit.add_argument("--pull-off-N", dest="pull_off_N", default=None,
+                     help="a measured pull-off force [N]: gamma from P* alone")
+    fit.add_argument("--interface", choices=INTERFACES, default="no_slip",
+                     help="interface model (default no_slip)")
+    fit.add_argument("--mesh", choices=case_api.MESHES, default="default", help="mesh density")
+    fit.add_argument("--json", action="store_true", help="print JSON instead of text")
+    fit.add_argument("--plot", default=None, metavar="FILE",
+                     help="write a figure of data, fitted curves and residuals (png, pdf, svg)")
     run = sub.add_parser("run", help="run a study YAML on dask; write netCDF, tables and figures")
     run.add_argument("study", help="study file (YAML)")
     run.add_argument("--out", default="results", help="output folder (default results/)")
@@ -462,6 +536,8 @@ def main(argv=None):
             _check_catalogue(ns)
         if ns.command == "case":
             return _run_case(ns)
+        if ns.command == "fit":
+            return _run_fit(ns)
         if ns.command == "run":
             return _run_study(ns)
         if ns.command == "tables":

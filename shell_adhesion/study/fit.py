@@ -1,0 +1,351 @@
+"""C10 and gamma of one shell from a measured force-displacement curve:
+`shell_adhesion.fit_curve` and the `fit` command.
+
+Input with units: R, t, h in mm; the curve as delta_mm, P_N in time order (approach, then
+retraction; a CSV file with the header ``delta_mm,P_N``); optionally a measured pull-off
+force in N.  One set of FE paths of the shell (t/R, h/R) serves every C10 and gamma
+(DESIGN.md section 3); `solver.fit` fits C10, gamma and the contact offset delta0 (measured
+delta = model delta + delta0) by least squares, and also what the half-space tools give
+(Hertz loading, JKR pull-off).  The 95 % intervals are linearised from the least-squares
+Jacobian and residuals (solver.fit).  P > 0 compression, delta > 0 approach.
+"""
+import csv
+from dataclasses import dataclass, field
+import json
+import math
+from pathlib import Path
+import time
+
+import numpy as np
+
+from shell_adhesion.solver import __version__
+from shell_adhesion.solver import fit as solver_fit
+from shell_adhesion.solver.geometry import (GAMMA_MAX, Cap, InputError, check_cap,
+                                            check_delta_max, delta_bound)
+from shell_adhesion.solver.contact import INTERFACES
+from shell_adhesion.solver.request import Request, gamma_bucket, solve_request
+from shell_adhesion.solver.scaling import check_finite, check_R
+from shell_adhesion.solver.theory import youngs_modulus_MPa
+
+MESHES = ("coarse", "default", "fine")
+HEADER = ("delta_mm", "P_N")
+API_NAMES = dict(R_mm="R_mm", t_mm="t_mm", h_mm="h_mm", curve="curve",
+                 pull_off_N="pull_off_N", interface="interface", mesh="mesh")
+DEPTH_MARGIN = 1.25     # the paths are loaded this much deeper than the curve seems to go
+GAMMA_MARGIN = 3.0      # and relaxed for gamma / (C10 R) up to this times the JKR estimate
+MAX_SOLVES = 3
+
+
+def read_curve(path) -> tuple:
+    """(delta_mm, P_N) arrays of a CSV file with the header ``delta_mm,P_N``; InputError
+    names the file, the row and the field of anything else."""
+    name = str(path)
+    try:
+        with open(path, newline="", encoding="utf-8") as f:
+            rows = list(csv.reader(f))
+    except OSError as e:
+        raise InputError(f"{name}: cannot be read ({e.strerror or e})") from None
+    except UnicodeDecodeError:
+        raise InputError(f"{name}: not a text (UTF-8) CSV file") from None
+    if not rows or tuple(c.strip() for c in rows[0]) != HEADER:
+        got = ",".join(rows[0]) if rows else "an empty file"
+        raise InputError(f"{name}: row 1: the header must be delta_mm,P_N (got {got!r})")
+    values = []
+    for i, row in enumerate(rows[1:], start=2):
+        if not row or all(not c.strip() for c in row):
+            continue
+        if len(row) != 2:
+            raise InputError(f"{name}: row {i}: {len(row)} fields, expected 2 (delta_mm,P_N)")
+        values.append([_cell(name, i, field, text) for field, text in zip(HEADER, row)])
+    data = np.array(values, dtype=float).reshape(-1, 2)
+    return data[:, 0], data[:, 1]
+
+
+def _cell(name, row, field, text):
+    try:
+        value = float(text)
+    except ValueError:
+        raise InputError(f"{name}: row {row}: {field}: {text.strip()!r} is not a number") from None
+    if not math.isfinite(value):
+        raise InputError(f"{name}: row {row}: {field}: {text.strip()} must be a finite number")
+    return value
+
+
+def check_curve(delta_mm, P_N, name="curve"):
+    """The curve as float arrays; InputError unless it is finite, has at least
+    MIN_LOADING_POINTS points up to its deepest delta and compresses the shell (P > 0).
+    Rows are numbered as in the CSV file (the header is row 1)."""
+    try:
+        d = np.asarray(delta_mm, dtype=float).ravel()
+        P = np.asarray(P_N, dtype=float).ravel()
+    except (TypeError, ValueError):
+        raise InputError(f"{name}: delta_mm and P_N must be sequences of numbers") from None
+    if len(d) != len(P):
+        raise InputError(f"{name}: {len(d)} delta_mm values but {len(P)} P_N values")
+    for field, v in zip(HEADER, (d, P)):
+        bad = np.flatnonzero(~np.isfinite(v))
+        if len(bad):
+            raise InputError(f"{name}: row {bad[0] + 2}: {field}: {v[bad[0]]} must be a "
+                             "finite number")
+    n_load = int(np.argmax(d)) + 1 if len(d) else 0
+    if n_load < solver_fit.MIN_LOADING_POINTS:
+        raise InputError(f"{name}: {n_load} loading points (rows up to the deepest delta_mm); "
+                         f"at least {solver_fit.MIN_LOADING_POINTS} needed")
+    if not np.any(P[:n_load] > 0):
+        raise InputError(f"{name}: P_N is never > 0 while loading: the curve never compresses "
+                         "the shell (P > 0 is compression)")
+    return d, P
+
+
+@dataclass(frozen=True)
+class FitInput:
+    """Checked input: lengths in mm, the curve (mm, N), the pull-off force (N) or None."""
+
+    R_mm: float
+    t_mm: float
+    h_mm: float
+    delta_mm: np.ndarray = field(repr=False)
+    P_N: np.ndarray = field(repr=False)
+    pull_off_N: float = None
+    interface: str = "no_slip"
+    mesh: str = "default"
+    source: str = "curve"
+
+
+def fit_input(R_mm, t_mm, h_mm, curve, pull_off_N=None, interface="no_slip",
+              mesh="default", names=None) -> FitInput:
+    """Check the input of a fit; InputError names the field (as `names` calls it)."""
+    n = dict(API_NAMES, **(names or {}))
+    R = check_finite(R_mm, n["R_mm"], "mm")
+    t = check_finite(t_mm, n["t_mm"], "mm")
+    h = check_finite(h_mm, n["h_mm"], "mm")
+    check_R(R, n["R_mm"])
+    check_cap(t / R, h / R, f"{n['t_mm']} (t/R = {t:g}/{R:g})", f"{n['h_mm']} (h/R = {h:g}/{R:g})")
+    if isinstance(curve, (str, Path)):
+        source = str(curve)
+        d, P = read_curve(curve)
+    else:
+        source = n["curve"]
+        d, P = curve
+    d, P = check_curve(d, P, source)
+    if pull_off_N is not None:
+        pull_off_N = check_finite(pull_off_N, n["pull_off_N"], "N")
+        if pull_off_N == 0:
+            raise InputError(f"{n['pull_off_N']}: 0 must be a non-zero force (N)")
+    if interface not in INTERFACES:
+        raise InputError(f"{n['interface']}: {interface!r} must be one of {', '.join(INTERFACES)}")
+    if mesh not in MESHES:
+        raise InputError(f"{n['mesh']}: {mesh!r} must be one of {', '.join(MESHES)}")
+    return FitInput(R, t, h, d, P, pull_off_N, interface, mesh, source)
+
+
+@dataclass(frozen=True, eq=False)
+class FitResult:
+    """A fitted curve: C10 [MPa], gamma [J/m^2] and delta0 [mm] with 95 % intervals
+    (linearised from the least-squares Jacobian), the half-space answer (`jkr`), and the
+    paths and estimate behind them (dimensionless, `solver.fit`)."""
+
+    input: FitInput
+    estimate: solver_fit.Estimate
+    jkr: tuple                  # (C10, x0, gamma_hat) of the half-space fit, dimensionless
+    pathset: object
+    provenance: dict = field(default_factory=dict)
+
+    @property
+    def C10_MPa(self):
+        return self.estimate.C10
+
+    @property
+    def gamma_J_m2(self):
+        return self.estimate.gamma_hat * self.estimate.C10 * self.input.R_mm * 1e3
+
+    @property
+    def delta0_mm(self):
+        return self.estimate.x0 * self.input.R_mm
+
+    def model_P_N(self):
+        """The fitted model's P [N] at the measured points (NaN after the jump-off)."""
+        R, e = self.input.R_mm, self.estimate
+        x = self.input.delta_mm / R
+        split = solver_fit.split_curve(x, self.input.P_N)
+        return solver_fit.model(self.pathset, e.C10, e.gamma_hat, e.x0, x, split) * R ** 2
+
+    def to_dict(self) -> dict:
+        """The result as plain JSON-able data."""
+        R, e, inp = self.input.R_mm, self.estimate, self.input
+        C10_j, x0_j, gh_j = self.jkr
+        return {
+            "input": dict(R_mm=R, t_mm=inp.t_mm, h_mm=inp.h_mm, curve=inp.source,
+                          points=len(inp.delta_mm), pull_off_N=inp.pull_off_N,
+                          interface=inp.interface, mesh=inp.mesh),
+            "C10_MPa": float(e.C10), "C10_MPa_ci95": [float(c) for c in e.C10_ci],
+            "gamma_J_m2": float(self.gamma_J_m2),
+            "gamma_J_m2_ci95": [float(g * R * 1e3) for g in e.gamma_ci],
+            "gamma_from": e.gamma_from,
+            "delta0_mm": float(self.delta0_mm),
+            "delta0_mm_ci95": [float(v * R) for v in e.x0_ci],
+            "residual_rms_N": float(np.sqrt(np.mean(e.residuals ** 2))) * R ** 2,
+            "points_used": dict(e.used),
+            "intervals": "95 %, linearised: s^2 (J^T J)^-1 from the least-squares Jacobian "
+                         "and residuals, Student t; without the mesh's own error"
+                         + ("; gamma's from C10's only (the pull-off force taken as exact)"
+                            if e.gamma_from == "pull_off" else ""),
+            "jkr": {"E_MPa": float(youngs_modulus_MPa(C10_j)), "C10_MPa": float(C10_j),
+                    "gamma_J_m2": float(gh_j * C10_j * R * 1e3), "delta0_mm": float(x0_j * R),
+                    "method": "Hertz fit of the loading (E* = 8 C10 = 4 E / 3), gamma from "
+                              "JKR's P* = -(3/2) pi R gamma with P* the most tensile force"
+                              + (" (the pull-off force given)" if inp.pull_off_N is not None
+                                 else "")},
+            "provenance": self.provenance,
+        }
+
+    def to_json(self) -> str:
+        return json.dumps(self.to_dict(), indent=1, allow_nan=False)
+
+
+def fit_curve(R_mm, t_mm, h_mm, curve, *, pull_off_N=None, interface="no_slip",
+              mesh="default") -> FitResult:
+    """Fit C10 and gamma of one shell to a measured force-displacement curve.
+
+    Parameters
+    ----------
+    R_mm, t_mm, h_mm : float
+        The shell: outer radius R, thickness t and depth h [mm] (as `solve_case`).
+    curve : str or Path or (delta_mm, P_N)
+        A CSV file with the header ``delta_mm,P_N``, or two sequences: the rim approach
+        delta [mm] and the force P [N] (P > 0 compression), in time order: approach to
+        the deepest point, then retraction (up to and beyond the jump-off, whose points
+        are left out).
+    pull_off_N : float, optional
+        A measured pull-off force [N] (its magnitude is used): gamma then comes from the
+        fixed-load pull-off P* alone, and C10 and delta0 from the loading.
+    interface : {"no_slip", "frictionless"}
+    mesh : {"coarse", "default", "fine"}
+
+    Returns
+    -------
+    FitResult
+        ``.to_dict()``: C10_MPa, gamma_J_m2 and delta0_mm with 95 % intervals (linearised
+        from the least-squares Jacobian and residuals, Student t), residual_rms_N, the
+        points used from each part and the half-space (Hertz + JKR) answer ``jkr``.
+
+    Raises
+    ------
+    InputError
+        (a ValueError) before any computation, naming the field, row or file.
+    solver.fit.FitError
+        If the curve cannot be fitted with the shell's paths.
+    """
+    inp = fit_input(R_mm, t_mm, h_mm, curve, pull_off_N, interface, mesh)
+    return fit_checked(inp)
+
+
+def fit_checked(inp: FitInput) -> FitResult:
+    """Solve the shell's paths as the curve needs and fit it (`fit_curve` after checks):
+    first the loading alone (C10 and delta0, so the gamma range of the paths can be
+    chosen), then loading and relaxation paths, again deeper or for larger gammas if the
+    fit needs it (at most MAX_SOLVES)."""
+    R = inp.R_mm
+    x, p = inp.delta_mm / R, inp.P_N / R ** 2
+    p_pull = None if inp.pull_off_N is None else -abs(inp.pull_off_N) / R ** 2
+    jkr = solver_fit.fit_jkr(x, p, p_pull)
+    cap = Cap(inp.t_mm / R, inp.h_mm / R)
+    depth = _depth(x, p, cap, inp.source)
+    t0 = time.perf_counter()
+    first, _, _ = solve_request(cap.t, cap.h, Request.serving(None, depth), GAMMA_MAX,
+                                inp.interface, inp.mesh)
+    start = solver_fit.fit_loading(first, x, p, jkr[:2])
+    _check_reach(x.max() - start[1], cap, inp)
+    gamma_max = _gamma_max(jkr, start[0])
+    solves = [dict(delta_max_over_R=float(first.delta_max), loading_only=True,
+                   solve_s=round(time.perf_counter() - t0, 3))]
+    for _ in range(MAX_SOLVES):
+        t1 = time.perf_counter()
+        ps, _, _ = solve_request(cap.t, cap.h, Request.serving(gamma_max, depth), gamma_max,
+                                 inp.interface, inp.mesh)
+        t2 = time.perf_counter()
+        try:
+            est = solver_fit.fit_curve(ps, x, p, p_pull, hertz=start)
+        except solver_fit.TooDeep as e:
+            _check_reach(e.x_turn, cap, inp)
+            depth = min(delta_bound(cap), max(depth, e.x_turn) * DEPTH_MARGIN)
+            solves.append(dict(delta_max_over_R=float(ps.delta_max), solve_s=round(t2 - t1, 3)))
+            continue
+        solves.append(dict(delta_max_over_R=float(ps.delta_max), gamma_max_over_C10R=ps.gamma_max,
+                           solve_s=round(t2 - t1, 3), fit_s=round(time.perf_counter() - t2, 3)))
+        if est.gamma_hat < 0.999 * est.gamma_span[1]:
+            break
+        if ps.gamma_max >= GAMMA_MAX:
+            raise solver_fit.FitError(
+                f"gamma/(C10 R) reaches {est.gamma_span[1]:.4g}, the largest the paths give "
+                f"(loaded to delta/R = {ps.loading_delta[-1]:.4g})")
+        gamma_max = gamma_bucket(min(GAMMA_MAX, GAMMA_MARGIN * est.gamma_hat))
+    else:
+        raise solver_fit.FitError(f"no fit within {MAX_SOLVES} solves of the paths")
+    provenance = {"version": __version__, "mesh": inp.mesh, "interface": inp.interface,
+                  "solves": solves, "wall_s": round(time.perf_counter() - t0, 3),
+                  "dofs": ps.stats.get("dofs")}
+    return FitResult(inp, est, jkr, ps, provenance)
+
+
+def _depth(x, p, cap: Cap, source) -> float:
+    """delta_max / R of the paths: the curve's depth from where P first exceeds 5 % of
+    its largest value, with DEPTH_MARGIN, within the shell's bound."""
+    split = solver_fit.split_curve(x, p)
+    xl, pl = x[split.loading], p[split.loading]
+    touch = xl[np.argmax(pl > 0.05 * pl.max())]
+    depth = DEPTH_MARGIN * (x.max() - touch)
+    bound = delta_bound(cap)
+    depth = min(max(depth, 1e-3), bound)
+    check_delta_max(depth, cap.h, f"{source}: the depth delta/R", t_over_R=cap.t)
+    return depth
+
+
+def _check_reach(x_turn, cap: Cap, inp: FitInput):
+    """InputError if the curve goes deeper from contact than the shell's supported depth."""
+    bound = delta_bound(cap)
+    if x_turn > bound * (1 + 1e-9):
+        R = inp.R_mm
+        raise InputError(f"{inp.source}: the curve goes {x_turn * R:.4g} mm deep from contact "
+                         f"(delta0 = {(inp.delta_mm.max() / R - x_turn) * R:.4g} mm from its "
+                         f"loading), beyond the supported {bound * R:.4g} mm for this shell "
+                         f"(delta/R <= {bound:g})")
+
+
+def _gamma_max(jkr, C10) -> float:
+    """gamma / (C10 R) the paths serve: GAMMA_MARGIN x JKR's gamma over the loading's C10
+    (a shell pulls off at a smaller force than JKR's, so its gamma is larger), on the
+    ladder."""
+    gR = jkr[2] * jkr[0]            # gamma / R of the half-space fit
+    gh = gR / C10 if np.isfinite(gR) and gR > 0 and C10 > 0 else 1e-3
+    return gamma_bucket(min(GAMMA_MAX, GAMMA_MARGIN * gh))
+
+
+def plot_fit(result: FitResult, path) -> Path:
+    """A figure of the data, the fitted curves (this fit and the half-space one) and the
+    residuals, written to `path` (its suffix picks the format)."""
+    from matplotlib.figure import Figure
+
+    inp, R = result.input, result.input.R_mm
+    model = result.model_P_N()
+    C10_j, x0_j, _ = result.jkr
+    fig = Figure(figsize=(7, 6.5), layout="constrained")
+    top, bottom = fig.subplots(2, 1, sharex=True, height_ratios=(3, 1))
+    top.plot(inp.delta_mm, inp.P_N, ".", color="0.5", label="data")
+    top.plot(inp.delta_mm, model, "-", color="C0",
+             label=f"shell fit: C10 = {result.C10_MPa:.4g} MPa, "
+                   f"gamma = {result.gamma_J_m2:.4g} J/m$^2$")
+    split = solver_fit.split_curve(inp.delta_mm / R, inp.P_N)
+    dl = inp.delta_mm[split.loading]
+    top.plot(dl, solver_fit.hertz_p(C10_j, dl / R - x0_j) * R ** 2, "--", color="C3",
+             label=f"half-space Hertz loading: E = {youngs_modulus_MPa(C10_j):.4g} MPa")
+    top.axhline(0.0, color="k", lw=0.5)
+    top.set_ylabel("P [N] (> 0 compression)")
+    top.legend(fontsize=8)
+    bottom.plot(inp.delta_mm, inp.P_N - model, ".", color="C0")
+    bottom.axhline(0.0, color="k", lw=0.5)
+    bottom.set_xlabel("delta [mm] (> 0 approach)")
+    bottom.set_ylabel("residual [N]")
+    path = Path(path)
+    fig.savefig(path, dpi=150)
+    return path

@@ -3,6 +3,7 @@ trusted when their file is damaged; concurrent writers do not corrupt it."""
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import fields
 import functools
+import json
 import multiprocessing
 import sqlite3
 
@@ -228,3 +229,20 @@ def test_temporaries_of_dead_writers_are_removed_on_open(tmp_path):
         p.write_bytes(b"partial")
     Catalogue(tmp_path).close()
     assert not orphan.exists() and mine.exists() and other.exists()
+
+
+def test_list_shows_each_sets_own_time_and_solid(tmp_path):
+    """`catalogue list`: the FE seconds of the set itself (not the time since its study
+    started) and the solid and cavity of its key, so sets differing only in material
+    are told apart."""
+    from shell_adhesion.catalogue.store import solid_of
+    ps = pathset()
+    with Catalogue(tmp_path / "cat") as cat:
+        cat.store(key(), to_dataset(ps), dict(relaxations=len(ps.relaxations), loading_s=1.25,
+                                              relaxation_s=2.5), {"wall_s": 600.0}, study="t")
+    text = format_entries(list_entries(tmp_path / "cat"))
+    assert "FE s" in text and "3.8" in text and "600.0" not in text and "neo_hooke" in text
+    mr = {"material": {"model": "mooney_rivlin", "C01_over_C10": 0.2, "C20_over_C10": 0.0,
+                       "D1_times_C10": 0.0, "Jm": None}, "cavity": {"mode": "sealed", "p": 0.0}}
+    assert solid_of(json.dumps(mr)) == "mooney_rivlin C01/C10=0.2, sealed"
+    assert solid_of("{}") == "neo_hooke"

@@ -338,10 +338,12 @@ class Catalogue:
                         tuple(row.values()))
 
     def entries(self) -> list:
-        """All path-set rows (dicts with COLUMNS), oldest first."""
+        """All path-set rows (dicts with COLUMNS and `solid`, the solid and cavity of the
+        set's key: `solid_of`), oldest first."""
         rows = self.db.execute(
-            f"SELECT {', '.join(COLUMNS)} FROM pathsets ORDER BY created, fingerprint").fetchall()
-        return [dict(r) for r in rows]
+            f"SELECT {', '.join(COLUMNS)}, key FROM pathsets ORDER BY created, fingerprint"
+        ).fetchall()
+        return [dict({c: r[c] for c in COLUMNS}, solid=solid_of(r["key"])) for r in rows]
 
     # -- runs --------------------------------------------------------------------------
 
@@ -378,18 +380,40 @@ def list_entries(catalogue_dir=None) -> list:
         return cat.entries()
 
 
+def solid_of(key_json) -> str:
+    """The solid (and closed cavity) a set's key names, in a few characters: 'neo_hooke'
+    (the default), else the model with its non-zero ratios to C10; ', sealed' or
+    ', pressure p=...' (p / C10) for a closed cavity."""
+    key = json.loads(key_json) if isinstance(key_json, str) else (key_json or {})
+    material = key.get("material") or {}
+    text = material.get("model", "neo_hooke")
+    ratios = [f"{name.replace('_over_C10', '/C10').replace('_times_C10', 'C10')}={value:g}"
+              for name, value in material.items()
+              if name != "model" and isinstance(value, (int, float)) and value]
+    if ratios:
+        text += " " + ",".join(ratios)
+    cavity = key.get("cavity")
+    if cavity:
+        text += f", {cavity['mode']}" + (f" p={cavity['p']:g}" if cavity.get("p") else "")
+    return text
+
+
 def format_entries(rows) -> str:
-    """A plain-text table of list_entries() rows, one line per path set."""
+    """A plain-text table of list_entries() rows, one line per path set: `FE s` is the
+    set's own computing time (its loading and relaxation tasks), `solid` what its key
+    names beyond the shape (solid_of)."""
     head = (f"{'fingerprint':<12}  {'status':<6}  {'t/R':>6}  {'h/R':>6}  {'interface':<12}  "
-            f"{'mesh':<7}  {'dmax/R':>6}  {'gmax':>7}  {'paths':>5}  {'wall s':>7}  created")
+            f"{'mesh':<7}  {'dmax/R':>6}  {'gmax':>7}  {'paths':>5}  {'FE s':>7}  "
+            f"{'solid':<22}  created")
     lines = [head]
     for r in rows:
-        wall = f"{r['wall_s']:.1f}" if r["wall_s"] is not None else "-"
+        seconds = [r[c] for c in ("loading_s", "relaxation_s") if r.get(c) is not None]
+        fe = f"{sum(seconds):.1f}" if seconds else "-"
         paths = r["relaxations"] if r["relaxations"] is not None else "-"
         line = (f"{r['fingerprint'][:12]:<12}  {r['status']:<6}  {r['t_over_R']:>6g}  "
                 f"{r['h_over_R']:>6g}  {r['interface']:<12}  {r['mesh']:<7}  "
-                f"{r['delta_max_over_R']:>6g}  {r['gamma_max_hat']:>7g}  {paths:>5}  {wall:>7}  "
-                f"{r['created']}")
+                f"{r['delta_max_over_R']:>6g}  {r['gamma_max_hat']:>7g}  {paths:>5}  {fe:>7}  "
+                f"{r.get('solid', ''):<22}  {r['created']}")
         if r["status"] != "ok" and r["reason"]:
             line += f"  ({r['reason']})"
         lines.append(line)

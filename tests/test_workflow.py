@@ -34,6 +34,18 @@ def test_every_point_answered(cube):
     within("its error bar (README 0.0084 N)", e, 0.0084, 0.0, floor=0.0002)
 
 
+def test_paper_table_of_the_main_job(cube):
+    """README: in the main job the pull-off rows agree with the one-shell table to its
+    digits, P(5 mm) is 14.61 N, a(5 mm) 9.70 mm and Fig. 2b's held load -37.3 N."""
+    rows = {r.quantity: r.ours for r in analysis.paper_comparison(cube).rows}
+    for quantity, stated, unit in (("P* (fixed load), gamma = 30 J/m^2", -1.710, 1e-3),
+                                   ("delta_dagger (fixed grips)", -0.683, 1e-3),
+                                   ("P at delta = 5 mm, no adhesion", 14.61, 0.01),
+                                   ("a at delta = 5 mm, no adhesion", 9.70, 0.01),
+                                   ("P at delta = 0, a = 10 mm held", -37.3, 0.1)):
+        within(quantity, rows[quantity], stated, 0.0, floor=unit)
+
+
 def test_trends(cube):
     by = {t.dim: t for t in analysis.trends(cube)}
     assert [by[d].verdict for d in ("C10", "t_over_R", "h_over_R", "gamma")] == [

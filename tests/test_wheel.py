@@ -65,6 +65,23 @@ def test_example_paper_from_the_wheel(dist, tmp_path):
     assert yaml.safe_load(out.stdout) == yaml.safe_load((REPO / "workflow.yaml").read_text())
 
 
+def test_coarse_case_from_the_wheel(dist, tmp_path):
+    """The unpacked wheel, away from the repository, solves a coarse case (the package's
+    modules come from the wheel, not the checkout)."""
+    site = tmp_path / "site"
+    with zipfile.ZipFile(dist[1]) as whl:
+        whl.extractall(site)
+    env = dict(os.environ, PYTHONPATH=str(site), MPLBACKEND="Agg")
+    out = subprocess.run([sys.executable, "-c", "import shell_adhesion, sys; "
+                          "print(shell_adhesion.__file__); from shell_adhesion.study.cli "
+                          "import main; sys.exit(main(['case', '--R', '20', '--t', '3', "
+                          "'--h', '20', '--C10', '0.3', '--gamma', '30', '--mesh', 'coarse']))"],
+                         cwd=tmp_path, env=env, capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stderr[-2000:]
+    assert Path(out.stdout.splitlines()[0]).is_relative_to(site)
+    assert "fixed load P* = -1.71" in out.stdout
+
+
 def _version():
     from shell_adhesion import __version__
     return __version__

@@ -49,7 +49,7 @@ def test_disabled_prints_nothing():
 
 def test_eta_from_the_pace_of_finished_paths():
     from shell_adhesion.study.progress import path_eta
-    assert path_eta(0.0, 2, 10, now=20.0) == ""          # too few finished for a pace
-    assert path_eta(0.0, 4, 0, now=20.0) == ""           # nothing left
-    assert path_eta(0.0, 4, 12, now=20.0) == ", ETA 1:00"   # 5 s a path, 12 left
+    assert path_eta(0.0, 19, 10, now=20.0) == ""         # too few finished for a pace
+    assert path_eta(0.0, 40, 0, now=20.0) == ""          # nothing left
+    assert path_eta(0.0, 40, 120, now=20.0) == ", ETA 1:00"   # 0.5 s a path, 120 left
     assert path_eta(None, 4, 12) == ""

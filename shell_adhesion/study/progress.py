@@ -16,7 +16,7 @@ def _clock(seconds: float) -> str:
     return f"{m}:{s:02d}" if m < 60 else f"{m // 60}:{m % 60:02d}:{s:02d}"
 
 
-ETA_AFTER = 3       # tasks finished before an ETA is shown
+ETA_AFTER = 20      # tasks finished (after the first) before an ETA is shown
 
 
 def path_eta(t0: float, finished: int, remaining: int, now: float = None) -> str:

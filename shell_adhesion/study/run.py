@@ -311,7 +311,7 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
         owner[f] = (job, None)
         pending.add(f)
 
-    jobs, t_start = [], time.perf_counter()
+    jobs, first_path = [], {}   # first_path: when the first relaxation path came in
     for s in shells:
         job = _Job(s, time.perf_counter(), initial_fit(Cap(s.t_over_R, s.h_over_R), s.request))
         job.expected = shell_size(s.t_over_R, s.h_over_R, s.key["mesh"], s.request)[1]
@@ -331,7 +331,12 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
         note = f"{done}/{'' if all(j.done for j in jobs) else '~'}{total} paths"
         if tally.relaxations_reused:
             note += f" ({tally.relaxations_reused} kept from an earlier run)"
-        return note + path_eta(t_start, tally.relaxations_computed, total - done)
+        if tally.relaxations_computed and not first_path:
+            first_path.update(t=time.perf_counter(), n=tally.relaxations_computed)
+        # the pace of the paths since the first one came in (the loadings go before it)
+        return note + path_eta(first_path.get("t"),
+                               tally.relaxations_computed - first_path.get("n", 0),
+                               total - done)
 
 
     def close(job):

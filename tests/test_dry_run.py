@@ -27,7 +27,7 @@ def test_cost_model_counts_dofs_and_paths_before_solving():
     from shell_adhesion.solver.request import initial_fit
     request = Request.serving(0.006, 0.25)
     fit = initial_fit(Cap(0.15, 1.0), request)
-    dofs, paths = shell_size(0.15, 1.0, "coarse", request)
+    dofs, paths = shell_size(Cap(0.15, 1.0), fit, "coarse")
     ps, d, _ = solve_paths(0.15, 1.0, "no_slip", "coarse", 0.25, 0.006, uniform=fit.uniform)
     assert dofs == d.ndof
     assert paths == pytest.approx(len(ps.relaxations), rel=0.15), (paths, len(ps.relaxations))

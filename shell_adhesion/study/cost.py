@@ -19,12 +19,11 @@ COST_S_PER_DOF_PATH = 7.7e-5
 LOADING_PATHS = 10          # the loading costs about as much as this many paths
 
 
-def shell_size(t_over_R: float, h_over_R: float, mesh: str, request) -> tuple:
-    """(dofs, relaxation paths) of one path set, counted before solving: the mixed Q2/Q1
-    unknowns of its mesh and the element-corner nodes of the outer surface out to the
-    contact radius its loading aims at (one relaxation path per contact event)."""
-    cap = Cap(t_over_R, h_over_R)
-    fit = initial_fit(cap, request)
+def shell_size(cap: Cap, fit, mesh: str) -> tuple:
+    """(dofs, relaxation paths) of one path set fitted as `fit` (solver.request.Fit),
+    counted before solving: the mixed Q2/Q1 unknowns of its mesh and the element-corner
+    nodes of the outer surface out to the contact radius its loading aims at (one
+    relaxation path per contact event)."""
     cm = cap_mesh(cap, mesh_spec(mesh, fit.uniform))
     n2 = cm.nodes.shape[1]
     corners = np.unique(cm.mesh.t[:4]).size          # the Q1 pressure nodes
@@ -39,7 +38,8 @@ def estimate_s(shells) -> tuple:
     """(FE seconds on one core, dofs summed, paths summed) of the plan's shells to solve."""
     dofs_paths, dofs_all, paths_all = 0.0, 0, 0
     for s in shells:
-        dofs, paths = shell_size(s.t_over_R, s.h_over_R, s.key["mesh"], s.request)
+        cap = Cap(s.t_over_R, s.h_over_R)
+        dofs, paths = shell_size(cap, initial_fit(cap, s.request), s.key["mesh"])
         dofs_paths += dofs * (paths + LOADING_PATHS)
         dofs_all += dofs
         paths_all += paths

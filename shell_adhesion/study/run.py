@@ -313,8 +313,9 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
 
     jobs, first_path = [], {}   # first_path: when the first relaxation path came in
     for s in shells:
-        job = _Job(s, time.perf_counter(), initial_fit(Cap(s.t_over_R, s.h_over_R), s.request))
-        job.expected = shell_size(s.t_over_R, s.h_over_R, s.key["mesh"], s.request)[1]
+        cap = Cap(s.t_over_R, s.h_over_R)
+        job = _Job(s, time.perf_counter(), initial_fit(cap, s.request))
+        job.expected = shell_size(cap, job.fit, s.key["mesh"])[1]
         jobs.append(job)
         load(job)
     n_shells = len(shells)
@@ -822,16 +823,14 @@ def dry_run(study, catalogue=None, workers=None, scheduler=None) -> str:
     study = _study_of(study)
     plan = make_plan(study, Settings())
     directory = Path(catalogue) if catalogue is not None else default_dir()
-    held, parts, times = 0, 0, []
+    missing, parts, times = list(plan.all_shells), 0, []
     if (directory / INDEX).exists():
         with Catalogue(directory, create=False) as cat:
-            for s in plan.all_shells:
-                if cat.candidates(s.key):
-                    held += 1
-                else:
-                    parts += cat.count_parts(s.key)
+            missing = [s for s in plan.all_shells if not cat.candidates(s.key)]
+            parts = sum(cat.count_parts(s.key) for s in missing)
             times = cat.timings(study.interface, study.mesh)
-    todo = len(plan.all_shells) - held
+    todo = len(missing)
+    held = len(plan.all_shells) - todo
     lines = [f"study {study.name} ({study.source}): {len(plan.points)} requested points, "
              f"{len(plan.all_shells)} distinct FE problems (path sets of one t/R, h/R each); "
              f"interface {study.interface}, mesh {study.mesh}, "
@@ -852,8 +851,7 @@ def dry_run(study, catalogue=None, workers=None, scheduler=None) -> str:
                      "sets of this mesh and interface, scaled by delta_max/R)"
                      + (f", at best {cpu / n:.0f} s on {n} workers" if n else ""))
     else:
-        todo_shells = [s for s in plan.all_shells if not _held(directory, s)]
-        cpu, dofs, paths = estimate_s(todo_shells)
+        cpu, dofs, paths = estimate_s(missing)
         n = workers or (None if scheduler else _cpu_count())
         lines.append(f"estimate: about {cpu:.0f} s of FE work from the cost model ({dofs} dofs "
                      f"and about {paths} relaxation paths in all; no timing of this mesh and "
@@ -861,10 +859,3 @@ def dry_run(study, catalogue=None, workers=None, scheduler=None) -> str:
                      + (f", at best {cpu / n:.0f} s on {n} workers" if n else ""))
     return "\n".join(lines)
 
-
-def _held(directory: Path, shell) -> bool:
-    """Whether the catalogue in `directory` holds the shell's path set (by its index)."""
-    if not (directory / INDEX).exists():
-        return False
-    with Catalogue(directory, create=False) as cat:
-        return bool(cat.candidates(shell.key))

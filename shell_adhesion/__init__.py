@@ -7,6 +7,8 @@ rigid plane (axisymmetric finite elements and Maugis' energy method).
     fit = sa.fit_curve(R_mm=20, t_mm=3, h_mm=20, curve="test.csv")   # C10, gamma of a test
     ds = sa.open_results("results/paper.nc")
     sa.run_study(sa.examples.paper_study(), out="results/")     # the paper's study, shipped
+    sa.pull_off_map().shell(R_mm=20, t_mm=3, h_mm=15, C10_MPa=0.3, gamma_J_m2=30)  # instantly
+    sa.design(C10_MPa=0.3, gamma_J_m2=30, R_mm=20, t_mm=(1, 6))   # the shell that sticks best
 
 The same functions serve the ``shell-adhesion`` command.  Subpackages:
 `shell_adhesion.solver` (one shell, pure computation, dimensionless inside),
@@ -26,6 +28,8 @@ _LAZY = {
     "open_results": "shell_adhesion.study.analysis",
     "run_study": "shell_adhesion.study.run",
     "fit_curve": "shell_adhesion.study.fit",
+    "pull_off_map": "shell_adhesion.study.pull_off_map",
+    "design": "shell_adhesion.study.design",
 }
 _SUBMODULES = ("examples",)      # `sa.examples` without an import of its own
 

@@ -2,7 +2,8 @@
 
 `paper` is the paper's study (the repository's `workflow.yaml`: the base case and the
 one-factor sweeps, 11 shells on the default mesh); `mooney-rivlin` sweeps C01/C10 for the
-base shell (`examples/study_mooney_rivlin.yaml`, coarse mesh).  Each is a path to a YAML
+base shell (`examples/study_mooney_rivlin.yaml`, coarse mesh); `map` and `map-coarse`
+build the pull-off maps shipped with the package (`shell-adhesion map build`).  Each is a path to a YAML
 file in `shell_adhesion/data`:
 
     import shell_adhesion as sa
@@ -17,7 +18,8 @@ from pathlib import Path
 
 DATA = Path(__file__).parent / "data"
 # the name `shell-adhesion example NAME` takes -> its file in DATA
-STUDIES = {"paper": "paper.yaml", "mooney-rivlin": "mooney_rivlin.yaml"}
+STUDIES = {"paper": "paper.yaml", "mooney-rivlin": "mooney_rivlin.yaml",
+           "map": "pull_off_map.yaml", "map-coarse": "pull_off_map_coarse.yaml"}
 
 
 def study_path(name: str) -> Path:

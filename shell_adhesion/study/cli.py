@@ -10,7 +10,9 @@
     shell-adhesion tables results/paper.nc [--format md|csv|tex] [--table cases|paper|all] [--out FILE]
     shell-adhesion plot results/paper.nc [--out DIR] [--format png,pdf] [--dpi 150]
     shell-adhesion analyse results/paper.nc
-    shell-adhesion example paper|mooney-rivlin > workflow.yaml
+    shell-adhesion map query|build|plot ...      (the pull-off map; see study.map_commands)
+    shell-adhesion design --C10 0.3 --gamma 30 --R 20 [--objective pull_off] [--t MIN MAX]
+    shell-adhesion example paper|mooney-rivlin|map|map-coarse > workflow.yaml
     shell-adhesion --version
 
 `tables`, `plot` and `analyse` read a results cube and never run the solver.
@@ -33,6 +35,7 @@ from shell_adhesion.solver import INTERFACES, ConvergenceError, InputError, __ve
 from shell_adhesion.solver.path import MaterialLimitError
 
 from . import case as case_api
+from . import map_commands
 
 FIGURE_FORMATS = ("png", "pdf", "svg")
 HARD_EXIT_S = 45.0      # a run still ending this long after Ctrl-C is ended at once
@@ -477,10 +480,11 @@ def _parser():
     ana = sub.add_parser("analyse", aliases=["summary"],
                          help="trends of |P*|, eta fit, slope in gamma, JKR ratio of a results cube")
     ana.add_argument("results", help="results netCDF written by `run` (results/<name>.nc)")
+    map_commands.add_parsers(sub, _OneDash)
     ex = sub.add_parser("example", help="print a study file shipped with the package (paper: "
                                         "the paper's study, the repository's workflow.yaml)")
     ex.add_argument("name", choices=tuple(examples.STUDIES),
-                    help="paper or mooney-rivlin; e.g. `shell-adhesion example paper > "
+                    help="paper, mooney-rivlin, map or map-coarse; e.g. `shell-adhesion example paper > "
                          "workflow.yaml`")
     return parser
 
@@ -550,6 +554,8 @@ def main(argv=None):
             return _run_catalogue(ns)
         if ns.command == "example":
             return _run_example(ns)
+        if ns.command in ("map", "design"):
+            return map_commands.run(ns)
     except InputError as err:
         print(f"shell-adhesion: error: {err}", file=sys.stderr)
         return 2

@@ -4,7 +4,7 @@ tangent the derivative of its forces (finite differences), with the FE solid's."
 import numpy as np
 import pytest
 
-from shell_adhesion.solver.cohesive import CohesiveLaw, Interface
+from shell_adhesion.solver.cohesive import PENALTY_ONSET, CohesiveLaw, Interface
 from shell_adhesion.solver.forms import discretise, residual, tangent
 from shell_adhesion.solver.geometry import Cap
 from shell_adhesion.solver.mesh import cap_mesh, mesh_spec
@@ -35,11 +35,17 @@ def test_law_has_dugdales_peak_and_work(ramp):
 
 def test_penalty_below_the_plane():
     law = CohesiveLaw(SIGMA0, GAMMA)
-    assert law.stiffness == pytest.approx(1e4 * SIGMA0 / 1e-3)
-    phi, sigma, dsigma = law(np.array([-1e-5]))
-    assert sigma[0] == pytest.approx(SIGMA0 - law.stiffness * 1e-5)   # pushes back
-    assert dsigma[0] == law.stiffness
-    assert phi[0] == pytest.approx(-GAMMA - SIGMA0 * 1e-5 + 0.5 * law.stiffness * 1e-10)
+    k, e = law.stiffness, PENALTY_ONSET * law.delta_c
+    assert k == pytest.approx(1e4 * SIGMA0 / 1e-3)
+    g = -10 * e                     # beyond the onset: slope k
+    phi, sigma, dsigma = law(np.array([g]))
+    assert sigma[0] == pytest.approx(SIGMA0 + k * (g + e / 2))       # pushes back
+    assert dsigma[0] == k
+    assert phi[0] == pytest.approx(-GAMMA + SIGMA0 * g + k * (g + e / 2) ** 2 / 2
+                                   + k * e ** 2 / 24)
+    phi, sigma, dsigma = law(np.array([-e / 2, 0.0]))       # the onset: slope from 0
+    assert dsigma == pytest.approx([k / 2, 0.0])
+    assert sigma == pytest.approx([SIGMA0 - k * e / 8, SIGMA0])
 
 
 def test_bad_law():
@@ -75,7 +81,7 @@ def test_tangent_against_finite_differences(iface):
     assert np.allclose(r, residual(d, x) + iface.residual(x), rtol=0, atol=1e-14)
     assert abs(K - K.T).max() <= 1e-12 * abs(K).max()
     e = np.random.default_rng(2).standard_normal(d.ndof)
-    h = 1e-9   # small: the penalty's slope jumps at g = 0 (points within h |e| of it err)
+    h = 1e-9
     fd = ((residual(d, x + h * e) + iface.residual(x + h * e))
           - (residual(d, x - h * e) + iface.residual(x - h * e))) / (2 * h)
     Ke = K @ e

@@ -14,8 +14,9 @@ deformed surface along its normal (attractive: it pulls the surface towards the 
 the z force per unit plane area is sigma(g).
 
 Non-penetration is part of the same law: below g = 0 the plane pushes back with a stiff
-linear penalty, sigma = sigma0 + k g (k = `stiffness`, default 1e4 sigma0 / delta_c, so a
-contact pressure of 10 sigma0 penetrates by 1e-3 delta_c).  The interface stress -sigma
+penalty of slope k (`stiffness`, default 1e4 sigma0 / delta_c, so a contact pressure of
+10 sigma0 penetrates by about 1e-3 delta_c), its slope rising from 0 over the first
+PENALTY_ONSET delta_c of penetration.  The interface stress -sigma
 (> 0 compression) is then continuous, the contact radius a is where g crosses 0 and the
 cohesive zone ends where g reaches delta_c: there are no contact events (node-wise
 unilateral contact of the Q2 surface chatters: a corner node held at the contact edge
@@ -24,7 +25,7 @@ carries a tensile reaction under a compressive pressure).  The contact is fricti
 The law is Dugdale's (sigma = sigma0 for g < delta_c = gamma / sigma0, then 0) with the
 step replaced by a cubic smooth-step of width w = `ramp` delta_c centred on delta_c:
 
-    sigma = sigma0 + k min(g, 0)            g <= delta_c - w/2
+    sigma = sigma0 + penalty(g)             g <= delta_c - w/2
     sigma = sigma0 (1 - 3 u^2 + 2 u^3)      u = (g - delta_c + w/2) / w in (0, 1)
     sigma = 0                               g >= delta_c + w/2
 
@@ -38,6 +39,7 @@ import numpy as np
 
 from .forms import Discretisation
 
+PENALTY_ONSET = 1e-3     # the penalty's slope rises over this fraction of delta_c
 GAUSS_POINTS = 8        # per quadratic edge: the smooth-step spans part of an edge
 
 
@@ -79,12 +81,24 @@ class CohesiveLaw:
         g1 = self.delta_c - 0.5 * w
         u = np.clip((g - g1) / w, 0.0, 1.0)
         s0 = self.sigma0
-        k, pen = self.stiffness, np.minimum(g, 0.0)
-        phi = np.where(g <= g1, -self.gamma + s0 * g + 0.5 * k * pen ** 2,
+        phi = np.where(g <= g1, -self.gamma + s0 * g,
                        -self.gamma + s0 * (g1 + w * (u - u ** 3 + 0.5 * u ** 4)))
-        sigma = s0 * (1 - 3 * u ** 2 + 2 * u ** 3) + k * pen
-        dsigma = -6 * s0 / w * (u - u ** 2) + np.where(g < 0, k, 0.0)
-        return phi, sigma, dsigma
+        sigma = s0 * (1 - 3 * u ** 2 + 2 * u ** 3)
+        dsigma = -6 * s0 / w * (u - u ** 2)
+        pen = self._penalty(g)
+        return phi + pen[0], sigma + pen[1], dsigma + pen[2]
+
+    def _penalty(self, g):
+        """(energy, stress, slope) of the penalty: slope k (g < -e), rising linearly from
+        0 at g = 0 over -e < g < 0, e = PENALTY_ONSET delta_c (a continuous slope: Newton
+        does not cycle on points that touch)."""
+        k, e = self.stiffness, PENALTY_ONSET * self.delta_c
+        h = np.clip(g, -e, 0.0)
+        deep = np.minimum(g + e, 0.0)
+        energy = -k * h ** 3 / (6 * e) + k * (deep * (deep / 2 - e / 2))
+        stress = -k * h ** 2 / (2 * e) + k * deep
+        slope = np.where(g < -e, k, -k * h / e)
+        return energy, stress, slope
 
 
 @dataclass(frozen=True, eq=False)

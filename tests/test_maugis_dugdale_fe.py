@@ -3,7 +3,11 @@
 (solver.maugis_dugdale, E* = 8 C10, K = 4 E* / 3) on the coarse mesh, with the whole
 S-shaped path (jump-in, contact, retraction, fold) traced by arc-length continuation.
 
-Measured (coarse mesh, ramp 0.5 delta_c): see the report of issue 23; P* is held to 2 %.
+Measured (coarse mesh, 4454 dofs, ramp 0.5 delta_c; benchmarks/maugis_dugdale_fe.py):
+Pbar* -1.615 against -1.6007 at lambda = 1 (+0.9 %, 40 s), about -1.814 against -1.8156 at
+lambda = 0.3 (-0.1 %, 11 s); held to the issue's 2 %.  a* and delta* are not yet within
+the issue's 3 % on this mesh (A* 0.84 against 0.90 at lambda = 1), so they are not held.
+lambda = 3 does not pass the jump-in yet (the path turns back there).
 """
 import math
 
@@ -28,7 +32,7 @@ def md_path(lam, mesh="coarse", ramp=0.5):
     return trace(Interface(d, law), DELTA_MAX)
 
 
-@pytest.mark.parametrize("lam", [1.0])
+@pytest.mark.parametrize("lam", [0.3, 1.0])
 def test_pull_off_follows_maugis_dugdale(lam):
     path = md_path(lam)
     assert path.ended_by == "left the cohesive range" and path.turn > 0
@@ -43,7 +47,11 @@ def test_pull_off_follows_maugis_dugdale(lam):
     # the path is the S: approach from P = 0, compression at the turn, back to P = 0
     Ps = path.array("P")
     assert abs(Ps[0]) <= 1e-12 * abs(po.P_star) and Ps[path.turn] > 0 and abs(Ps[-1]) <= 1e-3 * abs(po.P_star)
-    # the fixed-grips pull-off lies beyond the fixed-load one, at a smaller load
-    assert po.delta_dagger < po.delta_star and po.P_star < po.P_dagger < 0
+    # the fixed-grips pull-off (a fold in delta at lambda = 1; none at 0.3, where the
+    # fixed-grips retraction separates smoothly) lies beyond the fixed-load one
+    if lam >= 1:
+        assert po.delta_dagger < po.delta_star and po.P_star < po.P_dagger < 0
+    else:
+        assert math.isnan(po.delta_dagger)
     # every converged state is finite
     assert np.all(np.isfinite(Ps)) and np.all(np.isfinite(path.array("delta")))

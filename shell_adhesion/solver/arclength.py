@@ -256,7 +256,8 @@ class CohesivePullOff:
     """Pull-off of a retraction (units of R and C10 R^2; P < 0 tension).
 
     Fixed load: the least P (P_star) with its delta, a and c; fixed grips: the first fold
-    in delta after it (delta_dagger) with its P, a and c."""
+    in delta after it (delta_dagger) with its P, a and c (NaN if delta has no fold there:
+    the fixed-grips retraction then separates without a jump)."""
 
     P_star: float
     delta_star: float
@@ -281,12 +282,15 @@ def pull_off(path: ArcPath) -> CohesivePullOff:
     i = int(np.argmin(P))
     j = next((k for k in range(max(i, 1), len(D) - 1) if D[k] <= D[k - 1] and D[k] < D[k + 1]),
              None)
-    if i in (0, len(s) - 1) or j is None:
-        raise ValueError("the retraction does not reach its least P and the fold in delta")
+    if i in (0, len(s) - 1):
+        raise ValueError("the retraction does not reach its least P")
     d_star, P_star = _vertex(D[i - 1:i + 2], P[i - 1:i + 2])
-    P_dag, d_dag = _vertex(P[j - 1:j + 2], D[j - 1:j + 2])
-    return CohesivePullOff(P_star, d_star, *_between(s, D, i, d_star),
-                           P_dag, d_dag, *_between(s, P, j, P_dag))
+    if j is None:       # no fold in delta (DMT-like): fixed grips separate smoothly
+        dagger = (np.nan,) * 4
+    else:
+        P_dag, d_dag = _vertex(P[j - 1:j + 2], D[j - 1:j + 2])
+        dagger = (P_dag, d_dag, *_between(s, P, j, P_dag))
+    return CohesivePullOff(P_star, d_star, *_between(s, D, i, d_star), *dagger)
 
 
 def _vertex(u, v):

@@ -1,0 +1,310 @@
+"""Pseudo-arclength continuation of the rim approach delta with a cohesive interface.
+
+Dimensionless as the solver (lengths / R, forces / (C10 R^2)); delta > 0 approach, P > 0
+compression.  With finite-range adhesion P(delta) is S-shaped: it folds in delta at the
+jump-in on approach and at the fixed-grips pull-off on retraction.  The unknowns are the
+free dofs x and delta; besides equilibrium, each state satisfies
+
+    t . (y - y_k) = ds,     y = (x, delta),
+
+t the unit tangent at the last state y_k in the metric |y|^2 = delta^2 + mean over the
+free outer nodes of u_z^2 (so a rigid shift of the shell by delta has length about
+|delta|).  Each Newton iteration solves two right-hand sides with the free block of the
+tangent (bordering), so the path passes the folds, where that block is singular, as long
+as no state lands exactly on one.
+
+Contact and cohesion are one smooth interface law (`solver.cohesive`: a stiff penalty
+below the plane, frictionless), so the path has no contact events.  It starts from the
+shell lifted clear of the plane (delta0 < 0, no interaction: a rigid shift), approaches to
+delta_max, turns round and retracts until the shell is out of the cohesive range again.
+Every loop is bounded (`ArcSettings`); a non-finite residual is a failed step.
+"""
+from dataclasses import dataclass, field
+import math
+import time
+
+import numpy as np
+
+from .cohesive import Interface
+from .contact import constraints, gaps, rim_load
+from .forms import strain_energy, tangent
+from .linear import LinearSolver, SingularTangent, Timer
+from .path import ConvergenceError
+
+
+@dataclass(frozen=True)
+class ArcSettings:
+    """Continuation controls, lengths in units of R."""
+
+    tol: float = 1e-10         # force residual relative to the largest reaction
+    atol: float = 1e-13        # residual floor relative to C10 * volume / size
+    max_iter: int = 10         # Newton iterations per corrector
+    max_steps: int = 3000      # states on the whole path
+    ds_min: float = 1e-10      # step-length floor: a failure below it ends the path
+    dx_max: float = 0.25       # largest change of any outer gap per step, in delta_c
+    grow: float = 1.5          # step growth after an easy step (<= 4 iterations)
+    cos_min: float = 0.9       # least cosine between the tangents of consecutive states
+
+
+@dataclass(frozen=True, eq=False)
+class ArcState:
+    """A converged state of the path."""
+
+    delta: float               # approach / R
+    P: float                   # rim load / (C10 R^2), > 0 compression
+    a: float                   # contact radius / R: where the gap crosses 0 (0: no contact)
+    c: float                   # cohesive-zone radius / R: where the gap reaches delta_c
+    U: float                   # strain energy / (C10 R^3)
+    Pi: float                  # interface energy / (C10 R^3)
+    iterations: int = 0        # Newton iterations of the corrector that found it
+    x: np.ndarray = field(default=None, repr=False)
+
+
+@dataclass(frozen=True, eq=False)
+class ArcPath:
+    """The traced equilibrium path, in path order."""
+
+    states: tuple
+    turn: int                  # index of the state at which the approach turned round
+    ended_by: str
+    timer: Timer
+
+    def array(self, name):
+        return np.array([getattr(s, name) for s in self.states])
+
+
+class _Continuation:
+    """Newton machinery for one (discretisation, interface, law)."""
+
+    def __init__(self, iface: Interface, interface: str, s: ArcSettings):
+        self.iface, self.d, self.interface, self.s = iface, iface.d, interface, s
+        self.timer = Timer()
+        self.linear = LinearSolver(self.d.csr_indptr, self.d.csr_indices, True, self.timer)
+        cm = self.d.capmesh
+        on_rim = np.isin(cm.outer, cm.rim)
+        self.candidates = np.flatnonzero(~on_rim)           # outer nodes that may touch
+        self.Z = cm.nodes[1, cm.outer]
+        self.weight = np.zeros(self.d.ndof)                 # the metric on x
+        self.weight[self.d.uz(cm.outer[self.candidates])] = 1.0
+
+    def linearise(self, x):
+        t0 = time.perf_counter()
+        K, r = self.iface.add(x, *tangent(self.d, x))
+        self.timer.assembly += time.perf_counter() - t0
+        return K, r
+
+    def factor(self, K, c):
+        try:
+            lu = self.linear.factor(K, c)
+        except SingularTangent as err:
+            raise ConvergenceError(f"singular tangent ({err})") from None
+        e = np.zeros(self.d.ndof)
+        e[c.rimz] = 1.0
+        return lu, -(K @ e)[c.free]
+
+    def solve(self, lu, b):
+        try:
+            return lu.solve(b)
+        except SingularTangent as err:
+            raise ConvergenceError(f"singular tangent ({err})") from None
+
+    def dot(self, u, du, v, dv):
+        return float(np.dot(u * self.weight, v)) + du * dv
+
+    def tangent_at(self, K, c, orient=None):
+        """Unit tangent (tx, td) at a converged state of tangent K, oriented along `orient`
+        (a previous tangent), or towards increasing delta."""
+        lu, dr_dd = self.factor(K, c)
+        tx = np.zeros(self.d.ndof)
+        tx[c.free] = self.solve(lu, -dr_dd)
+        tx[c.rimz] = -1.0
+        td = 1.0
+        n = math.sqrt(self.dot(tx, td, tx, td))
+        tx, td = tx / n, td / n
+        if orient is not None and self.dot(tx, td, *orient) < 0:
+            tx, td = -tx, -td
+        return tx, td
+
+    def correct(self, c, x0, d0, t, ds):
+        """Equilibrium on the hyperplane t . (y - y0) = ds: (x, delta, K, r, iterations)."""
+        s, d = self.s, self.d
+        tx, td = t
+        x = x0 + ds * tx
+        delta = d0 + ds * td
+        x[c.rimz] = -delta
+        history = []
+        size = math.sqrt(self.dot(x0, d0, x0, d0))     # round-off scale of the constraint
+        for it in range(s.max_iter + 1):
+            with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+                K, r = self.linearise(x)
+            if not (np.all(np.isfinite(r)) and np.all(np.isfinite(K.data))):
+                raise ConvergenceError("non-finite residual")
+            res = np.abs(r[c.free]).max()
+            goal = s.tol * max(np.abs(r[c.fixed]).max(), 0.0) + s.atol * d.force_scale
+            g = self.dot(tx, td, x - x0, delta - d0) - ds
+            history.append(res)
+            if res <= goal and abs(g) <= 1e-10 * (abs(ds) + size):
+                return x, delta, K, r, it
+            if it == s.max_iter or (it > 2 and res > 1e3 * history[1]):
+                break
+            lu, dr_dd = self.factor(K, c)
+            self.timer.newton_iterations += 1
+            a = self.solve(lu, -r[c.free])
+            b = self.solve(lu, -dr_dd)
+            tw = (tx * self.weight)[c.free]
+            dd = (-g - tw @ a) / (tw @ b + td)
+            x[c.free] += a + b * dd
+            delta += dd
+            x[c.rimz] = -delta
+        raise ConvergenceError("corrector did not converge (residuals "
+                               + ", ".join(f"{h:.3g}" for h in history[-3:]) + ")")
+
+
+def trace(iface: Interface, delta_max: float, delta0: float = None,
+          settings: ArcSettings = ArcSettings(), progress=None) -> ArcPath:
+    """The equilibrium path from the shell lifted to delta0 / R (default: twice the law's
+    reach above the plane) to delta_max / R and back until the shell leaves the cohesive
+    range (or settings.max_steps states)."""
+    if not (math.isfinite(delta_max) and delta_max > 0):
+        raise ValueError(f"delta_max: {delta_max!r} must be a finite number > 0 (units of R)")
+    s, law, d = settings, iface.law, iface.d
+    cn = _Continuation(iface, "frictionless", s)
+    delta0 = -2.0 * law.reach if delta0 is None else delta0
+    c = constraints(d, "frictionless", [])
+    x = np.zeros(d.ndof)
+    x[d.n2:2 * d.n2] = -delta0                   # rigid shift: every u_z = -delta0
+    K, r = cn.linearise(x)
+    delta = delta0
+    t = cn.tangent_at(K, c)
+    states = [_state(cn, x, delta, r, 0)]
+    ds = 0.1 * law.delta_c
+    turn = -1
+    ended_by = f"step limit: {s.max_steps} states"
+    outer_z = d.uz(d.capmesh.outer[cn.candidates])
+    while len(states) < s.max_steps:
+        # the step: no outer gap changes by more than dx_max delta_c on the tangent
+        ds = min(ds, s.dx_max * law.delta_c / (np.abs(t[0][outer_z]).max() + abs(t[1])))
+        try:
+            x_new, d_new, K, r, it = cn.correct(c, x, delta, t, ds)
+            t_new = cn.tangent_at(K, c, t)
+            if cn.dot(*t_new, *t) < s.cos_min:
+                # the tangent turned too far in one step: the corrector may have crossed
+                # to another part of the path (a fold passed, or the branch behind)
+                raise ConvergenceError(f"the tangent turned by more than "
+                                       f"{math.degrees(math.acos(s.cos_min)):.0f} degrees")
+            t = t_new
+        except ConvergenceError as err:
+            ds *= 0.5
+            if ds < s.ds_min:
+                ended_by = f"step length below {s.ds_min:g} at delta = {delta:.6g} R ({err})"
+                break
+            continue
+        x, delta = x_new, d_new
+        states.append(_state(cn, x, delta, r, it))
+        if progress is not None:
+            progress(states[-1])
+        if it <= 4:
+            ds *= s.grow
+        if turn < 0 and delta >= delta_max:
+            turn = len(states) - 1
+            t = (-t[0], -t[1])
+        elif turn >= 0 and gaps(d, x, cn.candidates).min() > law.reach:
+            ended_by = "left the cohesive range"
+            break
+        elif turn < 0 and delta < delta0:
+            ended_by = f"the approach turned back below delta0 = {delta0:.6g} R"
+            break
+    return ArcPath(tuple(states), turn, ended_by, cn.timer)
+
+
+def _state(cn, x, delta, r, it) -> ArcState:
+    d, iface = cn.d, cn.iface
+    a = contact_radius(iface, x)
+    return ArcState(delta, rim_load(d, r), a, cohesive_radius(iface, x, a),
+                    strain_energy(d, x), iface.energy(x), it, x.copy())
+
+
+def _crossing(iface: Interface, x, level: float, a: float = 0.0) -> float:
+    """Deformed radius / R beyond a at which the outer surface's gap first reaches
+    `level` (linear between quadrature points); 0 if the gap there already exceeds it."""
+    r, z, _ = iface._points(x)
+    r, z = r.ravel(), z.ravel()
+    order = np.argsort(r)
+    r, z = r[order], z[order]
+    beyond = r >= a
+    r, z = r[beyond], z[beyond]
+    if not len(z) or z[0] >= level:
+        return 0.0
+    j = int(np.argmax(z >= level))
+    if z[j] < level:
+        return float(r[-1])
+    return float(r[j - 1] + (level - z[j - 1]) * (r[j] - r[j - 1]) / (z[j] - z[j - 1]))
+
+
+def contact_radius(iface: Interface, x) -> float:
+    """Contact radius a / R: where the gap first crosses 0 (0: no contact)."""
+    return _crossing(iface, x, 0.0)
+
+
+def cohesive_radius(iface: Interface, x, a: float) -> float:
+    """Cohesive-zone radius c / R: where the gap first reaches delta_c beyond a."""
+    return _crossing(iface, x, iface.law.delta_c, a)
+
+
+@dataclass(frozen=True)
+class CohesivePullOff:
+    """Pull-off of a retraction (units of R and C10 R^2; P < 0 tension).
+
+    Fixed load: the least P (P_star) with its delta, a and c; fixed grips: the first fold
+    in delta after it (delta_dagger) with its P, a and c (NaN if delta has no fold there:
+    the fixed-grips retraction then separates without a jump)."""
+
+    P_star: float
+    delta_star: float
+    a_star: float
+    c_star: float
+    P_dagger: float
+    delta_dagger: float
+    a_dagger: float
+    c_dagger: float
+
+
+def pull_off(path: ArcPath) -> CohesivePullOff:
+    """The pull-off of the retraction part of `path` (from its turn): each extremum is
+    the vertex of the parabola through the sampled extremum and its two neighbours (P
+    against delta at the least P; delta against P at the fold), a and c linear between
+    the two states around it."""
+    if path.turn < 0:
+        raise ValueError("the path did not turn round: no retraction")
+    s = path.states[path.turn:]
+    D = np.array([q.delta for q in s])
+    P = np.array([q.P for q in s])
+    i = int(np.argmin(P))
+    j = next((k for k in range(max(i, 1), len(D) - 1) if D[k] <= D[k - 1] and D[k] < D[k + 1]),
+             None)
+    if i in (0, len(s) - 1):
+        raise ValueError("the retraction does not reach its least P")
+    d_star, P_star = _vertex(D[i - 1:i + 2], P[i - 1:i + 2])
+    if j is None:       # no fold in delta (DMT-like): fixed grips separate smoothly
+        dagger = (np.nan,) * 4
+    else:
+        P_dag, d_dag = _vertex(P[j - 1:j + 2], D[j - 1:j + 2])
+        dagger = (P_dag, d_dag, *_between(s, P, j, P_dag))
+    return CohesivePullOff(P_star, d_star, *_between(s, D, i, d_star), *dagger)
+
+
+def _vertex(u, v):
+    """(u, v) at the vertex of the parabola v(u) through three points."""
+    c2, c1, c0 = np.polyfit(u, v, 2)
+    if not c2 > 0:
+        k = int(np.argmin(v))
+        return float(u[k]), float(v[k])
+    u0 = float(np.clip(-c1 / (2 * c2), u.min(), u.max()))
+    return u0, float(np.polyval([c2, c1, c0], u0))
+
+
+def _between(states, key, k, value):
+    """(a, c) linear in `key` between state k and its neighbour towards `value`."""
+    m = k + 1 if (key[k + 1] - key[k]) * (value - key[k]) > 0 else k - 1
+    w = 0.0 if key[m] == key[k] else (value - key[k]) / (key[m] - key[k])
+    return tuple((1 - w) * getattr(states[k], n) + w * getattr(states[m], n) for n in "ac")

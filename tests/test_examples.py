@@ -5,6 +5,8 @@ import pathlib
 import numpy as np
 import pytest
 
+import shell_adhesion as sa
+
 from shell_adhesion.solver.scaling import force_N
 
 from validation import within
@@ -73,3 +75,21 @@ def test_ex03_writes_where_it_is_told(tmp_path):
     ex.figure(rows, tmp_path / "sub" / ex.FIGURE)
     assert (tmp_path / "sub" / ex.FIGURE).stat().st_size > 0
     assert (tracked.read_bytes() if tracked.exists() else None) == before
+
+
+def test_ex05_design():
+    """The example's three designs on the coarse map: each at least as good as the best of
+    a brute-force scan of the map inside the bounds, inside the bounds, and the first
+    confirmed by its FE case."""
+    spec = importlib.util.spec_from_file_location("ex05", EXAMPLES / "ex05_design.py")
+    ex = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(ex)
+    out = ex.designs("coarse")
+    assert out["pull_off"].agrees
+    pm = sa.pull_off_map("coarse")
+    scan = [pm.shell(ex.R_MM, t, h, ex.C10_MPA, ex.GAMMA_J_M2)["P_star_N"][0]
+            for t in np.linspace(*ex.T_BOUNDS_MM, 26) for h in np.linspace(*ex.H_BOUNDS_MM, 26)]
+    assert out["pull_off"].design.objective_value >= max(abs(P) for P in scan) * (1 - 1e-6)
+    for result in out.values():
+        d = result.design
+        assert 1.0 <= d.t_mm <= 6.0 and 10.0 <= d.h_mm <= 20.0 and d.objective_value > 0

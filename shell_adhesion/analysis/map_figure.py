@@ -5,6 +5,7 @@ import math
 import numpy as np
 
 SAMPLES = 81        # per axis
+TICKS = (0.02, 0.05, 0.1, 0.2, 0.4, 1.0)
 
 
 def draw_map(pm, gamma_hat, path):
@@ -12,6 +13,7 @@ def draw_map(pm, gamma_hat, path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    from matplotlib.ticker import FixedLocator, FormatStrFormatter, NullFormatter
     from .pull_off_map import MapError
 
     (tlo, thi), (hlo, hhi) = pm.bounds["t_over_R"], pm.bounds["h_over_R"]
@@ -36,8 +38,11 @@ def draw_map(pm, gamma_hat, path):
         tt, hh = np.meshgrid(pm.ds["t_over_R"].values, pm.ds["h_over_R"].values)
         ax.plot(tt.ravel(), hh.ravel(), "k.", ms=4)
         ax.set(xscale="log", xlabel="t/R", ylabel="h/R")
-    axes[0].set_title(fr"pull-off map, $\gamma/(C_{{10}}R)$ = {gamma_hat:g} "
-                      f"({pm.ds.attrs.get('interface', '')}, {pm.ds.attrs.get('mesh', '')} mesh)")
-    axes[1].set_title("white line: 2 %; dots: the map's FE shells")
+        ax.xaxis.set_major_locator(FixedLocator([v for v in TICKS if tlo <= v <= thi]))
+        ax.xaxis.set_major_formatter(FormatStrFormatter("%g"))
+        ax.xaxis.set_minor_formatter(NullFormatter())
+    axes[0].set_title(fr"$P^*$ at $\gamma/(C_{{10}}R)$ = {gamma_hat:g} "
+                      f"({pm.ds.attrs.get('mesh', '')} mesh)")
+    axes[1].set_title("its error bar (white: 2 %); dots: FE shells")
     fig.savefig(path, dpi=120)
     plt.close(fig)

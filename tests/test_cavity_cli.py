@@ -6,7 +6,7 @@ import sys
 
 import pytest
 
-from shell_adhesion.solver.geometry import InputError
+from shell_adhesion.errors import InputError
 from shell_adhesion.study.case import case_input, solve_case
 
 BASE = ["--R", "20", "--t", "3", "--h", "20", "--C10", "0.3"]

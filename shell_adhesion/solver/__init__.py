@@ -9,9 +9,11 @@ Public entry points (dimensionless inside, see `solver.scaling` for units):
 from .case import (GAMMA_MAX, PathSet, Relaxation, relaxation_starts, relaxation_task,
                    solve_loading, solve_paths)
 from .contact import INTERFACES
-from .geometry import Cap, InputError, check_cap, check_delta_max, check_gamma
+from .geometry import Cap, check_cap, check_delta_max, check_gamma
+from shell_adhesion.errors import InputError
 from .material import MODELS, NEO_HOOKE, Material
-from .path import ConvergenceError, MaterialLimitError, QualityError, Settings
+from .path import Settings
+from shell_adhesion.errors import ConvergenceError, MaterialLimitError, QualityError
 
 __version__ = "0.1.0"
 __all__ = ["GAMMA_MAX", "PathSet", "Relaxation", "relaxation_starts", "relaxation_task",

@@ -17,7 +17,8 @@ from .energy import (Bridged, EnergySurface, InGradedZone, NotBracketed, OutOfRa
                      energy_surface, equilibrium, pull_off)
 from .forms import Discretisation, discretise
 from .contact import check_interface
-from .geometry import GAMMA_MAX, Cap, InputError, check_delta_max, check_gamma, shown
+from .geometry import GAMMA_MAX, Cap, check_delta_max, check_gamma, shown
+from shell_adhesion.errors import InputError
 from .material import NEO_HOOKE, Material
 from .mesh import CapMesh, cap_mesh, mesh_spec, uniform_radius
 from .path import LoadingPath, RelaxationPath, Settings, State, load, relax

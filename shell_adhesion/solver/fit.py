@@ -30,7 +30,7 @@ from scipy.stats import t as student_t
 
 from .case import PathSet, Relaxation
 from .energy import OutOfRange, equilibrium, pull_off
-from .geometry import InputError
+from shell_adhesion.errors import InputError
 from .theory import hertz_P_N, jkr_P_star_N
 
 MIN_LOADING_POINTS = 5

@@ -15,7 +15,7 @@ import xarray as xr
 from scipy import stats
 from scipy.interpolate import CubicHermiteSpline, CubicSpline
 
-from shell_adhesion.solver.geometry import InputError
+from shell_adhesion.errors import InputError
 from shell_adhesion.solver.theory import jkr_P_star_N, shell_law_scale_N
 
 from .dataset import DIMS, base_attr, study_of

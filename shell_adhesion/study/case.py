@@ -21,8 +21,9 @@ from shell_adhesion.solver.cavity import MODES as CAVITY_MODES, OPEN, P_ATM_KPA,
     CavitySnap, check_cavity
 from shell_adhesion.solver.geometry import GAMMA_MAX, check_gamma
 from shell_adhesion.solver.contact import INTERFACES
-from shell_adhesion.solver.path import MaterialLimitError
-from shell_adhesion.solver.geometry import Cap, InputError, check_cap, check_delta_max
+from shell_adhesion.errors import MaterialLimitError
+from shell_adhesion.solver.geometry import Cap, check_cap, check_delta_max
+from shell_adhesion.errors import InputError
 from shell_adhesion.solver.material import MODELS, NEO_HOOKE, Material
 from shell_adhesion.solver.error_bars import estimate as error_estimate
 from shell_adhesion.solver.mesh import coarser_mesh

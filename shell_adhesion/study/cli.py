@@ -29,8 +29,8 @@ import sys
 import time
 
 from shell_adhesion import examples
-from shell_adhesion.solver import INTERFACES, ConvergenceError, InputError, __version__
-from shell_adhesion.solver.path import MaterialLimitError
+from shell_adhesion.solver import INTERFACES, __version__
+from shell_adhesion.errors import ConvergenceError, InputError, MaterialLimitError
 
 from . import case as case_api
 

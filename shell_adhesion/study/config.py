@@ -79,7 +79,8 @@ import yaml
 
 from shell_adhesion.solver.geometry import GAMMA_MAX, check_gamma
 from shell_adhesion.solver.contact import INTERFACES
-from shell_adhesion.solver.geometry import InputError, check_cap, check_delta_max, shown
+from shell_adhesion.solver.geometry import check_cap, check_delta_max, shown
+from shell_adhesion.errors import InputError
 from shell_adhesion.solver.material import MODELS, NEO_HOOKE, Material, UnstableMaterial
 from shell_adhesion.solver.scaling import check_C10, check_finite, check_R, gamma_hat
 

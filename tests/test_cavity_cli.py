@@ -7,7 +7,8 @@ import sys
 import pytest
 
 from shell_adhesion.errors import InputError
-from shell_adhesion.study.case import case_input, solve_case
+from shell_adhesion.study.case import solve_case
+from shell_adhesion.study.case_input import case_input
 
 BASE = ["--R", "20", "--t", "3", "--h", "20", "--C10", "0.3"]
 

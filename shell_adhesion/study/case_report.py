@@ -12,6 +12,7 @@ from shell_adhesion.solver import theory
 from shell_adhesion.solver.error_bars import curve_error, error_bar, observed_order
 from shell_adhesion.solver.scaling import energy_mJ, force_N, length_mm
 
+from .case_input import cavity_kPa, material_MPa
 from .dataset import _CURVES, _PULL_OFF     # the cube's names, units and long names
 
 def _attrs(units, long_name):
@@ -98,7 +99,6 @@ def as_dict(result) -> dict:
     """Plain JSON-able data: input, material (model, coefficients in MPa, D1 in 1/MPa),
     loading, and with gamma relaxation, equilibrium and pull_off (one entry per gamma),
     provenance."""
-    from .case import material_MPa
 
     loading, relaxations, adhesion = _values(result)
     out = {"input": result.input.as_dict(),
@@ -204,7 +204,7 @@ def as_dataset(result) -> xr.Dataset:
                           _attrs("mm", "rim displacement delta on loading without adhesion")),
     }
     closed = inp.cavity.closed
-    if closed:      # a closed cavity's volume and gauge pressure (study.case.cavity_kPa)
+    if closed:      # a closed cavity's volume and gauge pressure (study.case_input.cavity_kPa)
         data["loading_V"] = ("loading_state", loading["V"], _attrs(
             "mm3", "cavity volume V (inner surface and lid) on loading"))
         data["loading_p"] = ("loading_state", loading["p"], _attrs(
@@ -282,7 +282,6 @@ def as_dataset(result) -> xr.Dataset:
     if inp.delta_max_mm is not None:
         attrs["delta_max_mm"] = inp.delta_max_mm
     if closed:
-        from .case import cavity_kPa
         attrs.update({f"cavity_{k}": v for k, v in
                       cavity_kPa(inp.cavity, inp.C10_MPa).items() if v is not None},
                      cavity_apex_uz_mm=prov["cavity_touch"]["apex_uz_mm"],

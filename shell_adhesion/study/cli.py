@@ -17,7 +17,7 @@
 
 Bad input prints one line naming the flag, the value and the rule, and exits with 2,
 before any computation and without creating anything.  The rules are the solver's
-(`study.case.case_input` for `case`, `study.config` for study files).  `case` has no
+(`study.case_input.case_input` for `case`, `study.config` for study files).  `case` has no
 `-h`: the depth is `--h`, help is `--help`.  A mistyped flag gets the nearest one
 ("did you mean --gamma?").
 """
@@ -33,10 +33,11 @@ from shell_adhesion.solver import INTERFACES, __version__
 from shell_adhesion.errors import ConvergenceError, InputError, MaterialLimitError
 
 from . import case as case_api
+from .case_input import MESHES, case_input
 
 FIGURE_FORMATS = ("png", "pdf", "svg")
 HARD_EXIT_S = 45.0      # a run still ending this long after Ctrl-C is ended at once
-# the flag of each input of `case` (study.case.case_input names the fields this way)
+# the flag of each input of `case` (study.case_input.case_input names the fields this way)
 CASE_FLAGS = dict(R_mm="--R", t_mm="--t", h_mm="--h", C10_MPa="--C10",
                   gamma_J_m2="--gamma", delta_max_mm="--delta-max", interface="--interface",
                   mesh="--mesh", material="--material", C01_MPa="--C01", C20_MPa="--C20",
@@ -101,7 +102,7 @@ def _run_case(ns):
     solid.update({arg: _number(CASE_FLAGS[arg], getattr(ns, arg), unit)
                   for arg, unit in CAVITY_FLAGS if getattr(ns, arg) is not None},
                  cavity=ns.cavity)
-    inp = case_api.case_input(_number("--R", ns.R, "mm"), _number("--t", ns.t, "mm"),
+    inp = case_input(_number("--R", ns.R, "mm"), _number("--t", ns.t, "mm"),
                      _number("--h", ns.h, "mm"), _number("--C10", ns.C10, "MPa"),
                      [_number("--gamma", g, "J/m^2") for g in ns.gamma or []],
                      None if ns.delta_max is None else _number("--delta-max", ns.delta_max, "mm"),
@@ -401,7 +402,7 @@ def _parser():
                       help="adhesion energy gamma [J/m^2]; repeat for several (one FE run serves all)")
     case.add_argument("--interface", choices=INTERFACES, default="no_slip",
                       help="interface model (default no_slip, the paper's cohesive contact)")
-    case.add_argument("--mesh", choices=case_api.MESHES, default="default", help="mesh density")
+    case.add_argument("--mesh", choices=MESHES, default="default", help="mesh density")
     case.add_argument("--cavity", default="open", metavar="MODE",
                       help="open (default), pressure (prescribed gauge --p-kPa) or sealed "
                       "(trapped gas): a rigid lid closes the rim")
@@ -432,7 +433,7 @@ def _parser():
                      help="a measured pull-off force [N]: gamma from P* alone")
     fit.add_argument("--interface", choices=INTERFACES, default="no_slip",
                      help="interface model (default no_slip)")
-    fit.add_argument("--mesh", choices=case_api.MESHES, default="default", help="mesh density")
+    fit.add_argument("--mesh", choices=MESHES, default="default", help="mesh density")
     fit.add_argument("--json", action="store_true", help="print JSON instead of text")
     fit.add_argument("--plot", default=None, metavar="FILE",
                      help="write a figure of data, fitted curves and residuals (png, pdf, svg)")

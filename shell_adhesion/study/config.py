@@ -55,7 +55,7 @@ A closed cavity's pressures enter the FE problem divided by C10 (`solver.cavity.
 with a closed cavity every C10 (and every p_kPa) is its own set of FE paths.  The gauge
 pressure p_kPa of `cavity: {mode: pressure}` may be a factor of `sweeps` or `grid` (a cube
 dimension); the cavity block gives its base value.  Every requested (C10, p_kPa) is checked
-by `study.case.cavity_of` (the `case` command's rules), named by its place in the file.
+by `study.case_input.cavity_of` (the `case` command's rules), named by its place in the file.
 
 The rules are the solver's, each in one place: R_mm and C10_MPa `solver.scaling.check_R`
 / `check_C10`, every requested shell `solver.geometry.check_cap` and `check_delta_max`,
@@ -77,12 +77,13 @@ import re
 
 import yaml
 
-from shell_adhesion.solver.geometry import GAMMA_MAX, check_gamma
-from shell_adhesion.solver.contact import INTERFACES
-from shell_adhesion.solver.geometry import check_cap, check_delta_max, shown
 from shell_adhesion.errors import InputError
+from shell_adhesion.solver.contact import INTERFACES
+from shell_adhesion.solver.geometry import GAMMA_MAX, check_cap, check_delta_max, check_gamma, shown
 from shell_adhesion.solver.material import MODELS, NEO_HOOKE, Material, UnstableMaterial
 from shell_adhesion.solver.scaling import check_C10, check_finite, check_R, gamma_hat
+
+from .case_input import cavity_of
 
 FACTORS = ("C10_MPa", "t_over_R", "h_over_R", "gamma_J_m2")
 RATIOS = ("C01_over_C10", "C20_over_C10", "C30_over_C10", "Jm", "D1_times_C10")
@@ -474,7 +475,6 @@ def _cavity(doc, sweeps, grid) -> dict:
 def cavity_at(study: Study, point: dict):
     """The dimensionless cavity (`solver.cavity.Cavity`, pressures / C10) of a requested
     point ({factor: (value, place)}); StudyError naming the place when a rule fails."""
-    from .case import cavity_of     # study.case reads the cube's names: import when used
     if not study.cavity:
         from shell_adhesion.solver.cavity import OPEN
         return OPEN

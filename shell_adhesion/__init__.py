@@ -16,14 +16,14 @@ study files shipped with the package).
 """
 from importlib import import_module as _import_module
 
-from .solver import __version__
+__version__ = "0.1.0"       # the one place it is written (pyproject.toml reads it)
 
 # public name -> module that defines it, imported on first use (so that importing the
 # package stays light and the command line starts fast)
 _LAZY = {
     "solve_case": "shell_adhesion.study.case",
     "CaseResult": "shell_adhesion.study.case",
-    "open_results": "shell_adhesion.study.analysis",
+    "open_results": "shell_adhesion.analysis.results",
     "run_study": "shell_adhesion.study.run",
     "fit_curve": "shell_adhesion.study.fit",
 }

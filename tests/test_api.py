@@ -27,7 +27,7 @@ def solved():
 
 
 def test_exports():
-    from shell_adhesion.study.analysis import open_results
+    from shell_adhesion.analysis import open_results
     assert sa.solve_case is case_module.solve_case and sa.CaseResult is case_module.CaseResult
     assert sa.open_results is open_results
     assert {"solve_case", "CaseResult", "open_results", "run_study"} <= set(dir(sa))
@@ -166,7 +166,7 @@ def test_foreign_catalogue_package_first_on_sys_path(tmp_path):
 def test_mooney_rivlin_case_carries_its_material():
     """--material mooney-rivlin reaches the FE (stiffer than neo-Hookean), and the JSON and
     the Dataset carry the model and its coefficients in MPa; eta uses mu0 = 2 (C10 + C01)."""
-    from shell_adhesion.solver import theory
+    from shell_adhesion import theory
     from shell_adhesion.solver.material import Material
 
     kw = dict(gamma_J_m2=30, delta_max_mm=1, mesh="coarse", progress=False)

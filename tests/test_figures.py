@@ -5,9 +5,9 @@ import pytest
 import xarray as xr
 from matplotlib.collections import PolyCollection, TriMesh
 
-from shell_adhesion.solver.energy import equilibrium, pull_off
-from shell_adhesion.study import figures
-from shell_adhesion.study.analysis import along, base_point
+from shell_adhesion.energy import equilibrium, pull_off
+from shell_adhesion.analysis import figures
+from shell_adhesion.analysis import along, base_point
 
 
 @pytest.fixture(scope="module")
@@ -168,7 +168,7 @@ def test_plot_command(small_study, tmp_path, forbid_fe, capsys):
 
 def test_a_base_without_some_factors_uses_the_middle_of_their_axis(ds, tmp_path):
     """A grid-only factor has no base value: figures and tables still come out."""
-    from shell_adhesion.study.products import write_tables
+    from shell_adhesion.analysis.products import write_tables
     grid = ds.copy()
     del grid.attrs["base_C10_MPa"], grid.attrs["base_gamma_J_m2"]
     assert base_point(grid) == dict(C10=0.3, t_over_R=0.15, h_over_R=1.0, gamma=30.0)

@@ -13,7 +13,7 @@ import sys
 import time
 
 from shell_adhesion.errors import InputError, MaterialLimitError
-from shell_adhesion.solver import __version__
+from shell_adhesion import __version__
 from shell_adhesion.solver.case import PathSet
 from shell_adhesion.solver.cavity import CavitySnap
 from shell_adhesion.solver.error_bars import estimate as error_estimate

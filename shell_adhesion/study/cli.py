@@ -29,7 +29,8 @@ import sys
 import time
 
 from shell_adhesion import examples
-from shell_adhesion.solver import INTERFACES, __version__
+from shell_adhesion import __version__
+from shell_adhesion.solver import INTERFACES
 from shell_adhesion.errors import ConvergenceError, InputError, MaterialLimitError
 
 from . import case as case_api
@@ -307,10 +308,10 @@ def _run_study(ns):
 
 
 def _run_tables(ns):
-    from .analysis import open_results
-    from shell_adhesion.catalogue.atomic import write_text_atomic
+    from shell_adhesion.analysis import open_results
+    from shell_adhesion.atomic import write_text_atomic
 
-    from .tables import cases_table, comparison_table, render
+    from shell_adhesion.analysis.tables import cases_table, comparison_table, render
 
     ds = open_results(ns.results)
     makers = {"cases": [cases_table], "paper": [comparison_table],
@@ -338,9 +339,9 @@ _dpi = _integer(20, 1200)
 
 
 def _run_plot(ns):
-    from .analysis import open_results
-    from .figures import write_figures
-    from .products import figures_dir
+    from shell_adhesion.analysis import open_results
+    from shell_adhesion.analysis.figures import write_figures
+    from shell_adhesion.analysis.products import figures_dir
 
     formats = tuple(f.strip() for f in ns.format.split(",") if f.strip())
     bad = [f for f in formats if f not in FIGURE_FORMATS]
@@ -366,7 +367,7 @@ def _run_example(ns):
 
 
 def _run_analyse(ns):
-    from .analysis import open_results, summary
+    from shell_adhesion.analysis import open_results, summary
 
     print(summary(open_results(ns.results)))
     return 0

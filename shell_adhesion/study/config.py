@@ -77,6 +77,8 @@ import re
 
 import yaml
 
+from shell_adhesion.cube import (CAVITY_FACTORS, CAVITY_KEYS, COEFFICIENTS, FACTORS, IN_MPA,
+                                 KEYS, OUTPUTS, RATIOS)
 from shell_adhesion.errors import InputError
 from shell_adhesion.solver.contact import INTERFACES
 from shell_adhesion.solver.geometry import GAMMA_MAX, check_cap, check_delta_max, check_gamma, shown
@@ -85,23 +87,12 @@ from shell_adhesion.solver.scaling import check_C10, check_finite, check_R, gamm
 
 from .case_input import cavity_of
 
-FACTORS = ("C10_MPa", "t_over_R", "h_over_R", "gamma_J_m2")
-RATIOS = ("C01_over_C10", "C20_over_C10", "C30_over_C10", "Jm", "D1_times_C10")
-# the same coefficients in MPa (D1 in 1/MPa): the ratio of each (Jm is a ratio already)
-IN_MPA = {"C01_MPa": "C01_over_C10", "C20_MPa": "C20_over_C10", "C30_MPa": "C30_over_C10",
-          "D1_per_MPa": "D1_times_C10"}
-COEFFICIENTS = RATIOS + tuple(IN_MPA)
 # the coefficients of each model (D1 in any form, for any model)
 _OF_MODEL = {"neo_hooke": (), "mooney_rivlin": ("C01_over_C10",),
              "yeoh": ("C20_over_C10", "C30_over_C10"), "gent": ("Jm",)}
 _RATIO_DIGITS = 12          # a ratio of MPa values is rounded so equal ratios share paths
 MESHES = ("coarse", "default", "fine")
-KEYS = ("name", "description", "R_mm", "base", "sweeps", "grid", "material", "interface", "mesh",
-        "delta_max_over_R", "error_bars", "task_timeout_s", "outputs", "cavity")
-CAVITY_KEYS = ("mode", "p_kPa", "p0_kPa", "p_atm_kPa", "gas_exponent")
-CAVITY_FACTORS = ("p_kPa",)     # cavity parameters that sweeps and grid may vary
 TASK_TIMEOUT_S = 3600.0     # default wall-time limit of one FE task (a loading or one path)
-OUTPUTS = ("equilibrium_curves", "loading_curves", "relaxation_curves", "deformed_states")
 MAX_BYTES = 1_000_000       # a study file is a few lines; refuse anything over 1 MB
 _STEM = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]{0,99}")
 

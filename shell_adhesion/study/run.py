@@ -1,5 +1,5 @@
 """Running a study: validate, plan, take what the catalogue holds, compute the rest on
-dask, write the results cube, then its tables and figures (study.products).
+dask, write the results cube, then its tables and figures (analysis.products).
 
 The loading of a shell is one task and each of its relaxation paths another; workers only
 compute.  This (client) process stores every finished relaxation path in the catalogue at
@@ -27,8 +27,9 @@ import uuid
 
 from shell_adhesion import solver
 from shell_adhesion.catalogue import Catalogue, default_dir
-from shell_adhesion.catalogue.atomic import clean_temporaries
+from shell_adhesion.atomic import clean_temporaries
 from shell_adhesion.catalogue.store import INDEX
+from shell_adhesion.cube import DIMS
 from shell_adhesion.solver.case import (cavity_lift, loading_views, pathset_of,
                                         relaxation_starts, relaxation_task, solve_loading,
                                         start_key, timing_stats)
@@ -44,7 +45,8 @@ from . import dataset, interrupt
 from .config import StudyError, load_study, validate
 from .keys import relaxation_part, solver_source_sha256
 from .plan import Plan, Shell, make_plan, served_key
-from .products import Products, kept_products, record_products, recorded_inputs, write_products
+from shell_adhesion.analysis.products import (Products, kept_products, record_products,
+                                              recorded_inputs, write_products)
 from .cost import estimate_s, shell_size
 from .progress import Progress, path_eta
 
@@ -780,7 +782,7 @@ def summary(outcome: Outcome, ds=None) -> str:
             if shown == 5:
                 lines.append(f"  ... {c['out of range'] - 5} more out of range")
                 break
-            pt = ", ".join(f"{d}={ds[d].values[i]:g}" for d, i in zip(dataset.DIMS, idx))
+            pt = ", ".join(f"{d}={ds[d].values[i]:g}" for d, i in zip(DIMS, idx))
             lines.append(f"  out of range at {pt}: {ds['reason'].values[idx]}")
             shown += 1
     for d in outcome.discarded:

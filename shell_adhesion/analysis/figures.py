@@ -9,8 +9,8 @@ gamma J/m^2).  Units: lengths mm, forces N, energies mJ, stresses MPa; P > 0
 compression, delta > 0 approach.  A cube that sweeps a material ratio (a dimension such as
 C01_over_C10) draws one curve per material value, labelled, in the sweep figures (Fig. 6)
 and in `fig_materials` (loading curves and pull-off against the ratio); the shell-level
-figures (Figs. 2 to 5) are drawn for its base solid (`products.base_material`).  Fig. 5 rebuilds U_E(a, delta) from the stored
-relaxation curves with `solver.energy` (interpolation only).
+figures (Figs. 2 to 5) are drawn for its base solid (`slices.base_material`).  Fig. 5 rebuilds U_E(a, delta) from the stored
+relaxation curves with `shell_adhesion.energy` (interpolation only).
 
     shell-adhesion plot results/paper.nc --out results/figures
 """
@@ -24,13 +24,15 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Rectangle
 from matplotlib.tri import Triangulation
 
-from shell_adhesion.catalogue.atomic import atomic_path
-from shell_adhesion.solver.energy import (energy_surface, total_energy_fixed_grips,
-                           total_energy_fixed_load)
-from shell_adhesion.solver.theory import jkr_P_star_N, shell_law_scale_N
+from shell_adhesion.atomic import atomic_path
+from shell_adhesion.cube import DIMS
+from shell_adhesion.energy import (energy_surface, total_energy_fixed_grips,
+                                   total_energy_fixed_load)
+from shell_adhesion.theory import jkr_P_star_N, shell_law_scale_N
 
-from .analysis import along, base_point, eta_fit
-from .dataset import DIMS
+from .fits import eta_fit
+from .results import along, base_point
+from .slices import base_material, material_label
 
 SWEEPS = (("C10", "C10 [MPa]"), ("t_over_R", "t/R [1]"), ("h_over_R", "h/R [1]"),
           ("gamma", "gamma [J/m$^2$]"))
@@ -126,9 +128,8 @@ def _ratios_label(at: dict) -> str:
 
 
 def _base_and_others(ds):
-    """(label, cube) of the base solid (`products.base_material`), and [(label, cube)] of
+    """(label, cube) of the base solid (`slices.base_material`), and [(label, cube)] of
     the other swept solids; (None, ds, []) for a cube that sweeps no ratio."""
-    from .products import base_material
     solids = materials(ds)
     if solids[0][0] is None:
         return None, ds, []
@@ -144,7 +145,6 @@ _RATIO_LABELS = {"C01_over_C10": "C01/C10", "C20_over_C10": "C20/C10",
 
 
 def _title(ds, p, with_gamma=True):
-    from .tables import material_label
     R = float(ds["R"])
     s = (f"R = {R:g} mm, t = {p['t_over_R'] * R:g} mm, h = {p['h_over_R'] * R:g} mm, "
          f"C10 = {p['C10']:g} MPa")
@@ -622,7 +622,6 @@ def write_figures(ds, out_dir, formats=("png", "pdf"), dpi=150) -> tuple:
     `shell-adhesion run`, is above MIN_DPI, the least for a figure meant to be read).
     The shell-level figures of a cube that sweeps a material ratio are drawn for its base
     solid, and MATERIAL_FIGURES only for such a cube."""
-    from .products import base_material
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     written, skipped = [], {}

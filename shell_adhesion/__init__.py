@@ -8,11 +8,13 @@ rigid plane (axisymmetric finite elements and Maugis' energy method).
     ds = sa.open_results("results/paper.nc")
     sa.run_study(sa.examples.paper_study(), out="results/")     # the paper's study, shipped
 
-The same functions serve the ``shell-adhesion`` command.  Subpackages:
-`shell_adhesion.solver` (one shell, pure computation, dimensionless inside),
-`shell_adhesion.study` (parameter studies on dask, the results cube, the command line),
-`shell_adhesion.catalogue` (the store of solved path sets); `shell_adhesion.examples` (the
-study files shipped with the package).
+The same functions serve the ``shell-adhesion`` command (`shell_adhesion.cli`).
+Subpackages: `shell_adhesion.solver` (one shell, pure computation, dimensionless inside),
+`shell_adhesion.study` (parameter studies on dask and the results cube they write),
+`shell_adhesion.analysis` (what is read from a cube: fits, tables, figures; never the
+solver), `shell_adhesion.catalogue` (the store of solved path sets).  Leaves they share:
+`cube` (the cube's layout), `theory` (closed forms), `energy` (Maugis' method), `errors`,
+`atomic` (atomic file writes); `examples` (the study files shipped with the package).
 """
 from importlib import import_module as _import_module
 

@@ -12,7 +12,7 @@ import shell_adhesion as sa
 from shell_adhesion.errors import InputError
 from shell_adhesion.solver.scaling import force_N, gamma_hat, length_mm
 from shell_adhesion.study import case as case_module
-from shell_adhesion.study.cli import main
+from shell_adhesion.cli import main
 
 from conftest import ENV
 

@@ -11,7 +11,7 @@ from shell_adhesion.solver.pathset_dataset import from_dataset
 from shell_adhesion.solver.scaling import force_N, length_mm
 from shell_adhesion import cube
 from shell_adhesion.study import dataset
-from shell_adhesion.study.cli import main
+from shell_adhesion.cli import main
 from shell_adhesion.study.config import validate
 from shell_adhesion.study.keys import pathset_key
 from shell_adhesion.study.plan import make_plan, shell_key

@@ -154,7 +154,7 @@ def test_run_writes_tables_and_figures_beside_the_cube(small_study):
 
 
 def test_plot_command(small_study, tmp_path, forbid_fe, capsys):
-    from shell_adhesion.study.cli import main
+    from shell_adhesion.cli import main
     assert main(["plot", str(small_study), "--out", str(tmp_path / "f"), "--format", "png"]) == 0
     assert len(list((tmp_path / "f").glob("*.png"))) == len(figures.FIGURES)
     assert "6 files in" in capsys.readouterr().out

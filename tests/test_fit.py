@@ -14,7 +14,7 @@ import pytest
 from shell_adhesion import fit_curve
 from shell_adhesion.solver.fit import gamma_curve
 from shell_adhesion.errors import InputError
-from shell_adhesion.study.cli import main
+from shell_adhesion.cli import main
 
 from conftest import ENV
 

@@ -9,7 +9,7 @@ import pytest
 import yaml
 
 import shell_adhesion as sa
-from shell_adhesion.study.cli import main
+from shell_adhesion.cli import main
 from shell_adhesion.study.config import StudyError
 
 from conftest import REPO

@@ -28,13 +28,11 @@ from pathlib import Path
 import sys
 import time
 
-from shell_adhesion import examples
-from shell_adhesion import __version__
-from shell_adhesion.solver import INTERFACES
+from shell_adhesion import __version__, examples
 from shell_adhesion.errors import ConvergenceError, InputError, MaterialLimitError
-
-from . import case as case_api
-from .case_input import MESHES, case_input
+from shell_adhesion.solver import INTERFACES
+from shell_adhesion.study import case as case_api
+from shell_adhesion.study.case_input import MESHES, case_input
 
 FIGURE_FORMATS = ("png", "pdf", "svg")
 HARD_EXIT_S = 45.0      # a run still ending this long after Ctrl-C is ended at once
@@ -128,7 +126,7 @@ FIT_FLAGS = dict(R_mm="--R", t_mm="--t", h_mm="--h", curve="--curve",
 
 def _run_fit(ns):
     """`fit`: C10 and gamma of one shell from a measured curve (study.fit)."""
-    from . import fit as fit_api
+    from shell_adhesion.study import fit as fit_api
 
     if ns.plot is not None:
         _check_figure_path(ns.plot)
@@ -274,9 +272,10 @@ def _run_study(ns):
     """`run`: the study through study.run.run_study (one orchestration for API and CLI)."""
     from shell_adhesion.catalogue import default_dir
 
-    from . import interrupt
-    from .config import StudyError
-    from .run import Interrupted, RunInputError, SchedulerLost, dry_run, exit_code, run_study
+    from shell_adhesion.study import interrupt
+    from shell_adhesion.study.config import StudyError
+    from shell_adhesion.study.run import (Interrupted, RunInputError, SchedulerLost, dry_run,
+                                          exit_code, run_study)
 
     try:
         if ns.dry_run:

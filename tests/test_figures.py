@@ -150,7 +150,14 @@ def test_run_writes_tables_and_figures_beside_the_cube(small_study):
     assert tables == {f"{t}.{f}" for t in ("cases", "paper") for f in ("csv", "md", "tex")} | {
         "analysis.txt"}
     figs = {p.name for p in stem.with_name(stem.name + "_figures").iterdir()}
-    assert figs == {f"{n}.{e}" for n in figures.FIGURES for e in ("png", "pdf")}
+    assert figs == {f"{n}.png" for n in figures.FIGURES}      # PDF on request (plot)
+
+
+def test_figures_drawn_side_by_side_are_those_drawn_one_by_one(ds, tmp_path):
+    one, skipped_one = figures.write_figures(ds, tmp_path / "one", ("png",), processes=1)
+    two, skipped_two = figures.write_figures(ds, tmp_path / "two", ("png",), processes=2)
+    assert [p.name for p in one] == [p.name for p in two] and skipped_one == skipped_two
+    assert all(a.stat().st_size == b.stat().st_size for a, b in zip(one, two))
 
 
 def test_plot_command(small_study, tmp_path, forbid_fe, capsys):

@@ -3,7 +3,7 @@ all read from the results netCDF (never from the solver).
 
     results/<name>.nc               the cube (study.dataset)
     results/<name>_tables/          cases.{csv,md,tex}, paper.{csv,md,tex}, analysis.txt
-    results/<name>_figures/         fig2 ... fig6b as PNG and PDF (analysis.figures)
+    results/<name>_figures/         fig2 ... fig6b as PNG (analysis.figures; PDF on request)
     results/<name>_products.json    digests of the cube's content and file, and the files
                                     written from it
 
@@ -20,7 +20,7 @@ import xarray as xr
 
 from shell_adhesion.atomic import write_text_atomic
 
-from .figures import write_figures
+from .figures import RUN_FORMATS, write_figures
 from .slices import base_cavity, base_material
 from .summary import summary
 from .tables import FORMATS, cases_table, comparison_table, render
@@ -119,8 +119,9 @@ def write_tables(ds: xr.Dataset, out_dir) -> list:
     return written
 
 
-def write_products(results_nc, formats=("png", "pdf")) -> Products:
-    """Tables and figures of the cube at `results_nc`, beside it."""
+def write_products(results_nc, formats=RUN_FORMATS) -> Products:
+    """Tables and figures of the cube at `results_nc`, beside it (figures as PNG; other
+    formats on request, e.g. formats=("png", "pdf"))."""
     path = Path(results_nc)
     p = Products()
     t0 = time.perf_counter()

@@ -1,6 +1,6 @@
 """The `shell-adhesion` command line.
 
-    shell-adhesion case --R 20 --t 3 --h 20 --C10 0.3 [--gamma 30 ...] [--json]
+    shell-adhesion case --R 20 --t 3 --h 20 --C10 0.3 [--gamma 30 ...] [--json [--curves]]
         [--material neo-hookean|mooney-rivlin|yeoh|gent] [--C01 C] [--C20 C] [--C30 C]
         [--Jm J] [--D1 D]
     shell-adhesion fit --R 20 --t 3 --h 20 --curve test.csv [--pull-off-N P] [--json]
@@ -114,9 +114,9 @@ def _run_case(ns):
     except MaterialLimitError as e:     # the request cannot be met with this Jm: exit 2
         raise InputError(e.text(inp.R_mm, "mm", "--delta-max", "--Jm")) from None
     if ns.json:
-        print(result.to_json())
+        print(result.to_json(curves=ns.curves))
     else:
-        _print_case(result.to_dict())
+        _print_case(result.to_dict(curves=True))
     return 1 if result.refused else 0       # every answer is printed; a refusal fails
 
 
@@ -415,6 +415,8 @@ def _parser():
     case.add_argument("--gas-exponent", dest="gas_exponent", default=None,
                       help="sealed gas p V^n = const: n >= 1 (default 1 isothermal, 1.4 adiabatic)")
     case.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    case.add_argument("--curves", action="store_true",
+                      help="with --json: the loading, relaxation and equilibrium curves too")
     case.add_argument("--no-error-bars", dest="no_error_bars", action="store_true",
                       help="skip the second, coarser mesh that gives every number its "
                            "discretisation error bar (about 25 %% faster)")

@@ -67,14 +67,16 @@ class CaseResult:
     coarsest_pull_off: tuple = ()
     refused: tuple = ()             # (gamma_J_m2, reason) of each gamma not answered
 
-    def to_dict(self) -> dict:
-        """The result as plain JSON-able data (NaN as None): input, loading, relaxation,
-        equilibrium and pull_off (with gamma), provenance."""
-        return case_report.as_dict(self)
+    def to_dict(self, curves: bool = False) -> dict:
+        """The result as plain JSON-able data (NaN as None): input, material, pull_off (with
+        gamma, units and error bars) and provenance; with `curves` also the loading,
+        relaxation and equilibrium curves."""
+        return case_report.as_dict(self, curves)
 
-    def to_json(self) -> str:
-        """The JSON text `shell-adhesion case --json` prints (without the final newline)."""
-        return json.dumps(self.to_dict(), indent=1, allow_nan=False)
+    def to_json(self, curves: bool = False) -> str:
+        """The JSON text `shell-adhesion case --json` prints (`--curves`: with the curves),
+        without the final newline: the summary of `to_dict`, or everything with `curves`."""
+        return json.dumps(self.to_dict(curves), indent=1, allow_nan=False)
 
     def to_dataset(self):
         """The result as an xarray Dataset with named dimensions (``gamma``,

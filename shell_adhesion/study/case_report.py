@@ -95,15 +95,30 @@ def _list(x, digits=10):
     return [_num(v, digits) for v in np.asarray(x, dtype=float)]
 
 
-def as_dict(result) -> dict:
+def as_dict(result, curves: bool = False) -> dict:
     """Plain JSON-able data: input, material (model, coefficients in MPa, D1 in 1/MPa),
-    loading, and with gamma relaxation, equilibrium and pull_off (one entry per gamma),
-    provenance."""
+    pull_off (one entry per gamma: values with units in their names, error bars, status)
+    and provenance; with `curves` also loading, and with gamma relaxation and equilibrium
+    (the curves, a few thousand numbers)."""
 
     loading, relaxations, adhesion = _values(result)
     out = {"input": result.input.as_dict(),
-           "material": material_MPa(result.input.material, result.input.C10_MPa),
-           "loading": {"delta_mm": _list(loading["delta"]), "P_N": _list(loading["P"]),
+           "material": material_MPa(result.input.material, result.input.C10_MPa)}
+    if curves:
+        out.update(_curves_dict(result, loading, relaxations, adhesion))
+    if adhesion:
+        out["pull_off"] = [_pull_off_dict(g, v) for g, v, _ in adhesion]
+        missing = (result.provenance.get("error_bars") or {}).get("not_given", {})
+        for po in out["pull_off"]:
+            if f"{po['gamma_J_m2']:g}" in missing:     # the error bar says why it is not there
+                po["error_note"] = missing[f"{po['gamma_J_m2']:g}"]
+    out["provenance"] = result.provenance
+    return out
+
+
+def _curves_dict(result, loading, relaxations, adhesion) -> dict:
+    """The curves in units: loading, and with gamma relaxation and equilibrium."""
+    out = {"loading": {"delta_mm": _list(loading["delta"]), "P_N": _list(loading["P"]),
                        "a_mm": _list(loading["a"]), "U_E_mJ": _list(loading["U"])}}
     closed = result.input.cavity.closed
     if closed:   # the enclosed volume and the gauge pressure of a closed cavity
@@ -124,12 +139,6 @@ def as_dict(result) -> dict:
              "stable_fixed_load": [bool(v) for v in c["stable_fixed_load"]],
              "stable_fixed_grips": [bool(v) for v in c["stable_fixed_grips"]]}
             for g, v, c in adhesion if v["status"] == "ok"]
-        out["pull_off"] = [_pull_off_dict(g, v) for g, v, _ in adhesion]
-        missing = (result.provenance.get("error_bars") or {}).get("not_given", {})
-        for po in out["pull_off"]:
-            if f"{po['gamma_J_m2']:g}" in missing:     # the error bar says why it is not there
-                po["error_note"] = missing[f"{po['gamma_J_m2']:g}"]
-    out["provenance"] = result.provenance
     return out
 
 

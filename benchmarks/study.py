@@ -22,7 +22,7 @@ import yaml
 HERE = Path(__file__).resolve().parent
 # this script shares its name with the `study` package: import the package, not itself
 sys.path[:] = [p for p in sys.path if Path(p or ".").resolve() != HERE]
-from shell_adhesion.study.products import write_products  # noqa: E402
+from shell_adhesion.analysis.products import write_products
 from shell_adhesion.study.run import execute  # noqa: E402
 
 REPO = HERE.parent

@@ -10,22 +10,24 @@ rigid plane (axisymmetric finite elements and Maugis' energy method).
     sa.pull_off_map().shell(R_mm=20, t_mm=3, h_mm=15, C10_MPa=0.3, gamma_J_m2=30)  # instantly
     sa.design(C10_MPa=0.3, gamma_J_m2=30, R_mm=20, t_mm=(1, 6))   # the shell that sticks best
 
-The same functions serve the ``shell-adhesion`` command.  Subpackages:
-`shell_adhesion.solver` (one shell, pure computation, dimensionless inside),
-`shell_adhesion.study` (parameter studies on dask, the results cube, the command line),
-`shell_adhesion.catalogue` (the store of solved path sets); `shell_adhesion.examples` (the
-study files shipped with the package).
+The same functions serve the ``shell-adhesion`` command (`shell_adhesion.cli`).
+Subpackages: `shell_adhesion.solver` (one shell, pure computation, dimensionless inside),
+`shell_adhesion.study` (parameter studies on dask and the results cube they write),
+`shell_adhesion.analysis` (what is read from a cube: fits, tables, figures; never the
+solver), `shell_adhesion.catalogue` (the store of solved path sets).  Leaves they share:
+`cube` (the cube's layout), `theory` (closed forms), `energy` (Maugis' method), `errors`,
+`atomic` (atomic file writes); `examples` (the study files shipped with the package).
 """
 from importlib import import_module as _import_module
 
-from .solver import __version__
+__version__ = "0.1.0"       # the one place it is written (pyproject.toml reads it)
 
 # public name -> module that defines it, imported on first use (so that importing the
 # package stays light and the command line starts fast)
 _LAZY = {
     "solve_case": "shell_adhesion.study.case",
     "CaseResult": "shell_adhesion.study.case",
-    "open_results": "shell_adhesion.study.analysis",
+    "open_results": "shell_adhesion.analysis.results",
     "run_study": "shell_adhesion.study.run",
     "fit_curve": "shell_adhesion.study.fit",
     "pull_off_map": "shell_adhesion.study.pull_off_map",

@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from shell_adhesion.solver.theory import shell_law_scale_N
-from shell_adhesion.study import analysis
+from shell_adhesion.theory import shell_law_scale_N
+from shell_adhesion import analysis
 from shell_adhesion.study.dataset import DIMS
 
 R = 20.0

@@ -9,10 +9,10 @@ import numpy as np
 import pytest
 
 import shell_adhesion as sa
-from shell_adhesion.solver import InputError
+from shell_adhesion.errors import InputError
 from shell_adhesion.solver.scaling import force_N, gamma_hat, length_mm
 from shell_adhesion.study import case as case_module
-from shell_adhesion.study.cli import main
+from shell_adhesion.cli import main
 
 from conftest import ENV
 
@@ -27,7 +27,7 @@ def solved():
 
 
 def test_exports():
-    from shell_adhesion.study.analysis import open_results
+    from shell_adhesion.analysis import open_results
     assert sa.solve_case is case_module.solve_case and sa.CaseResult is case_module.CaseResult
     assert sa.open_results is open_results
     assert {"solve_case", "CaseResult", "open_results", "run_study"} <= set(dir(sa))
@@ -85,7 +85,7 @@ def test_dataset_named_dimensions_units_everywhere(solved):
 
 
 def test_json_matches_dataset(solved):
-    data = json.loads(solved.to_json())
+    data = json.loads(solved.to_json(curves=True))
     ds = solved.to_dataset()
     assert data["input"] == dict(BASE, delta_max_mm=2.0, gamma_J_m2=[30.0, 20.0],
                                  interface="no_slip", mesh="coarse")
@@ -96,6 +96,18 @@ def test_json_matches_dataset(solved):
                                                           rel=1e-9)
     assert len(data["relaxation"]) == ds.sizes["relaxation"]
     assert data["loading"]["P_N"] == pytest.approx(list(ds.loading_P.values), rel=1e-9)
+
+
+def test_the_default_json_is_the_summary(solved):
+    """Issue 24: `case --json` is short (the pull-off numbers with error bars and units, the
+    input, the provenance); the curves come with curves=True (`--curves`)."""
+    short, full = solved.to_json(), solved.to_json(curves=True)
+    assert len(short.splitlines()) < 200 < len(full.splitlines())
+    data, everything = json.loads(short), json.loads(full)
+    assert list(data) == ["input", "material", "pull_off", "provenance"]
+    assert {"loading", "relaxation", "equilibrium"} <= set(everything)
+    assert data["pull_off"] == everything["pull_off"] and data["input"] == everything["input"]
+    assert "P_N_error" in data["pull_off"][0]["fixed_load"]
 
 
 def test_cli_prints_exactly_to_json(solved, monkeypatch, capsys):
@@ -156,7 +168,7 @@ def test_foreign_catalogue_package_first_on_sys_path(tmp_path):
         return subprocess.run([sys.executable, "-m", "shell_adhesion", *argv], env=env,
                               cwd=foreign, capture_output=True, text=True, timeout=300)
     case = run("case", "--R", "20", "--t", "3", "--h", "20", "--C10", "0.3", "--mesh", "coarse",
-               "--delta-max", "0.5", "--json")
+               "--delta-max", "0.5", "--json", "--curves")
     assert case.returncode == 0, case.stderr
     assert json.loads(case.stdout)["loading"]["delta_mm"][-1] == pytest.approx(0.5)
     listed = run("catalogue", "list")
@@ -166,19 +178,19 @@ def test_foreign_catalogue_package_first_on_sys_path(tmp_path):
 def test_mooney_rivlin_case_carries_its_material():
     """--material mooney-rivlin reaches the FE (stiffer than neo-Hookean), and the JSON and
     the Dataset carry the model and its coefficients in MPa; eta uses mu0 = 2 (C10 + C01)."""
-    from shell_adhesion.solver import theory
+    from shell_adhesion import theory
     from shell_adhesion.solver.material import Material
 
     kw = dict(gamma_J_m2=30, delta_max_mm=1, mesh="coarse", progress=False)
     mr = sa.solve_case(**BASE, material="mooney-rivlin", C01_MPa=0.06, **kw)
     nh = sa.solve_case(**BASE, **kw)
-    data = json.loads(mr.to_json())
+    data = json.loads(mr.to_json(curves=True))
     assert data["material"] == dict(model="mooney_rivlin", C10_MPa=0.3, C01_MPa=0.06,
                                     C20_MPa=0.0, C30_MPa=0.0, Jm=None, D1_per_MPa=0.0)
     assert json.loads(nh.to_json())["material"]["model"] == "neo_hooke"
     assert data["provenance"]["material"] == Material("mooney_rivlin", 0.2).as_dict()
     # same delta, stiffer solid: a larger load
-    assert data["loading"]["P_N"][-1] > json.loads(nh.to_json())["loading"]["P_N"][-1] > 0
+    assert data["loading"]["P_N"][-1] > json.loads(nh.to_json(curves=True))["loading"]["P_N"][-1] > 0
     po = data["pull_off"][0]
     m = Material("mooney_rivlin", 0.2)
     assert po["eta"] == pytest.approx(
@@ -210,7 +222,7 @@ def test_error_bars_beside_every_number(solved):
     error estimate of solver.error_bars from the same shell on the next two coarser meshes
     (the observed order where the three converge, beside it as "<name>_order")."""
     from shell_adhesion.solver.error_bars import error_bar, observed_order
-    out = solved.to_dict()
+    out = solved.to_dict(curves=True)
     assert (solved.coarser.mesh, solved.coarsest.mesh) == ("coarser", "coarsest")
     assert out["provenance"]["error_bars"]["coarser_meshes"] == ["coarser", "coarsest"]
     for po, (_, _, c1), c2, c3 in zip(out["pull_off"], solved.adhesion,
@@ -235,7 +247,7 @@ def test_error_bars_beside_every_number(solved):
 def test_no_error_bars_skips_the_coarser_mesh():
     out = subprocess.run([sys.executable, "-m", "shell_adhesion", "case", "--R", "20", "--t", "3",
                           "--h", "20", "--C10", "0.3", "--mesh", "coarse", "--delta-max", "0.5",
-                          "--json", "--no-error-bars"], env=ENV, capture_output=True, text=True,
+                          "--json", "--curves", "--no-error-bars"], env=ENV, capture_output=True, text=True,
                          timeout=300)
     assert out.returncode == 0, out.stderr
     d = json.loads(out.stdout)

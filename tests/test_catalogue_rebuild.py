@@ -9,7 +9,7 @@ from shell_adhesion.catalogue import Catalogue
 from shell_adhesion.catalogue.store import check_index, CorruptIndex
 from shell_adhesion.solver import solve_paths
 from shell_adhesion.solver.pathset_dataset import from_dataset, to_dataset
-from shell_adhesion.study.cli import main
+from shell_adhesion.cli import main
 from shell_adhesion.study.keys import pathset_key
 
 

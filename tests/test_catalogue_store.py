@@ -218,7 +218,7 @@ def test_temporaries_of_dead_writers_are_removed_on_open(tmp_path):
     import os
     import subprocess
     import sys
-    from shell_adhesion.catalogue.atomic import _host
+    from shell_adhesion.atomic import _host
     dead = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"],
                           capture_output=True, text=True, timeout=60).stdout.strip()
     (tmp_path / "pathsets").mkdir()

@@ -18,7 +18,8 @@ from scipy.integrate import quad
 from shell_adhesion.solver.cavity import Cavity, bind, pressurise
 from shell_adhesion.solver.contact import Constraints
 from shell_adhesion.solver.forms import discretise, residual, tangent
-from shell_adhesion.solver.geometry import Cap, InputError
+from shell_adhesion.solver.geometry import Cap
+from shell_adhesion.errors import InputError
 from shell_adhesion.solver.mesh import cap_mesh, mesh_spec
 
 from conftest import REPO, energy_roundoff

@@ -9,8 +9,9 @@ from shell_adhesion.catalogue import Catalogue, fingerprint
 from shell_adhesion.solver.cavity import OPEN, Cavity
 from shell_adhesion.solver.pathset_dataset import from_dataset
 from shell_adhesion.solver.scaling import force_N, length_mm
+from shell_adhesion import cube
 from shell_adhesion.study import dataset
-from shell_adhesion.study.cli import main
+from shell_adhesion.cli import main
 from shell_adhesion.study.config import validate
 from shell_adhesion.study.keys import pathset_key
 from shell_adhesion.study.plan import make_plan, shell_key
@@ -201,7 +202,7 @@ def test_sealed_study_equals_solve_case(sealed_run):
     assert_point_equals_case(ds, result)
     p = ds.loading_p_kPa.sel(C10=C10, t_over_R=0.15, h_over_R=1.0).values
     assert np.nanmax(p) > 0                 # the gas is compressed on loading
-    again = make_plan(validate(dataset.study_of(ds)))   # the cube rebuilds the study
+    again = make_plan(validate(cube.study_of(ds)))   # the cube rebuilds the study
     assert [s.key for s in again.shells] == [s.key for s in make_plan(validate(STUDY)).shells]
     assert ds.loading_V_mm3.attrs["units"] == ds.relaxation_V_mm3.attrs["units"] == "mm^3"
     assert ds.relaxation_p_kPa.attrs["units"] == "kPa"
@@ -232,7 +233,7 @@ def test_pressure_sweep_cube_layout(sealed_run):
     assert ds.attrs["cavity_mode"] == "pressure" and ds.attrs["cavity_p_kPa"] == 5.0
     assert set(ds.loading_V_mm3.dims) == {"p_kPa", "C10", "t_over_R", "h_over_R",
                                           "loading_state"}
-    assert validate(dataset.study_of(ds)).sweeps == plan.study.sweeps
+    assert validate(cube.study_of(ds)).sweeps == plan.study.sweeps
 
 
 @pytest.mark.slow

@@ -33,7 +33,7 @@ def test_bad_input_one_line(change, flag):
 
 
 def test_json_case_with_adhesion():
-    out = run(*BASE, "--mesh", "coarse", "--delta-max", "5", "--gamma", "30", "--gamma", "20", "--json")
+    out = run(*BASE, "--mesh", "coarse", "--delta-max", "5", "--gamma", "30", "--gamma", "20", "--json", "--curves")
     assert out.returncode == 0, out.stderr
     data = json.loads(out.stdout)
     assert set(data) >= {"input", "loading", "relaxation", "equilibrium", "pull_off", "provenance"}

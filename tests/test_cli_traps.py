@@ -119,7 +119,7 @@ def test_help_still_works():
 
 def test_flag_prefixes_still_accepted():
     """A prefix of one flag is argparse's abbreviation, not a typo."""
-    from shell_adhesion.study.cli import _parser
+    from shell_adhesion.cli import _parser
 
     ns = _parser().parse_args(CASE + ["--gam", "30", "--no-error", "--delta=2"])
     assert ns.gamma == ["30"] and ns.no_error_bars and ns.delta_max == "2"

@@ -11,8 +11,9 @@ import pytest
 import xarray as xr
 from matplotlib.figure import Figure
 
-from shell_adhesion.study import config, dataset
-from shell_adhesion.study.analysis import open_results
+from shell_adhesion import cube
+from shell_adhesion.study import config
+from shell_adhesion.analysis import open_results
 
 BASE = dict(C10=0.3, t_over_R=0.15, h_over_R=1.0, gamma=30.0)
 # the checker's Python API in a subprocess (a timeout fails it instead of hanging)
@@ -81,7 +82,7 @@ def test_units_are_read_by_pint_and_udunits(ds):
         assert cf_units.Unit(units).is_unknown() is False, (name, units)
         assert isinstance(q[name].data, pint.Quantity), name
         assert q[name].data.units == ureg.Unit(units), (name, units)
-    assert dataset.GAMMA_UNITS == ds["gamma"].attrs["units"] == ds["gamma_J_m2"].attrs["units"]
+    assert cube.GAMMA_UNITS == ds["gamma"].attrs["units"] == ds["gamma_J_m2"].attrs["units"]
     # 1 J/m^2 = 1 mN/mm; MPa mm^2 = N; N mm = mJ
     np.testing.assert_allclose(q["gamma_J_m2"].pint.to("mN/mm").pint.magnitude,
                                ds["gamma"].values, rtol=1e-14)
@@ -156,7 +157,7 @@ def test_study_is_stored_as_numbers_and_rebuilt(ds, small_study):
         assert isinstance(v, (str, int, float, np.number, np.ndarray)), k
         assert not (isinstance(v, str) and v.lstrip()[:1] in "{["), f"{k} holds JSON"
     source = config.load_study(small_study.parent.parent / "small.yaml")
-    assert config.validate(dataset.study_of(ds)).as_dict() == source.as_dict()
+    assert config.validate(cube.study_of(ds)).as_dict() == source.as_dict()
 
 
 @pytest.mark.parametrize("study", [
@@ -173,7 +174,7 @@ def test_study_is_stored_as_numbers_and_rebuilt(ds, small_study):
 ])
 def test_study_attributes_survive_netcdf(study, tmp_path):
     """A partial base, a one-value list and empty groups come back as written."""
-    attrs = dataset.study_attrs(study)
+    attrs = cube.study_attrs(study)
     xr.Dataset(attrs=attrs).to_netcdf(tmp_path / "s.nc")
     with xr.open_dataset(tmp_path / "s.nc") as back:
-        assert dataset.study_of(back) == {k: v for k, v in study.items() if v != {}}
+        assert cube.study_of(back) == {k: v for k, v in study.items() if v != {}}

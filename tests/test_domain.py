@@ -8,8 +8,9 @@ import sys
 import pytest
 
 from shell_adhesion.solver import case
-from shell_adhesion.solver.geometry import (DELTA_MAX, GAMMA_MAX, H_MIN, T_MIN, InputError,
-                                            check_cap, check_delta_max, check_gamma)
+from shell_adhesion.solver.geometry import (DELTA_MAX, GAMMA_MAX, H_MIN, T_MIN, check_cap,
+                                            check_delta_max, check_gamma)
+from shell_adhesion.errors import InputError
 
 from conftest import ENV, REPO
 

@@ -66,7 +66,7 @@ def test_energy_is_path_independent(base_coarse):
 def test_quintic_hermite_is_exact_for_quintics():
     """U_E(delta) per path is the quintic Hermite spline through U, P = dU/ddelta and
     dP/ddelta: a quintic is reproduced with its derivatives, from two states or many."""
-    from shell_adhesion.solver.energy import hermite_quintic
+    from shell_adhesion.energy import hermite_quintic
     c = np.array([0.3, -1.2, 0.7, 2.0, -0.5, 1.1])       # U = sum c_k delta^k
     U = np.polynomial.Polynomial(c)
     fine = np.linspace(-0.1, 0.25, 97)

@@ -12,7 +12,8 @@ import xarray as xr
 
 from shell_adhesion.solver.error_bars import (ORDER, SAFETY, SAFETY_OBSERVED, curve_error,
                                                error_bar, observed_order)
-from shell_adhesion.study import analysis, figures, tables
+from shell_adhesion import analysis
+from shell_adhesion.analysis import figures, tables
 
 from validation import within
 

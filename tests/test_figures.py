@@ -5,9 +5,9 @@ import pytest
 import xarray as xr
 from matplotlib.collections import PolyCollection, TriMesh
 
-from shell_adhesion.solver.energy import equilibrium, pull_off
-from shell_adhesion.study import figures
-from shell_adhesion.study.analysis import along, base_point
+from shell_adhesion.energy import equilibrium, pull_off
+from shell_adhesion.analysis import figures
+from shell_adhesion.analysis import along, base_point
 
 
 @pytest.fixture(scope="module")
@@ -150,11 +150,18 @@ def test_run_writes_tables_and_figures_beside_the_cube(small_study):
     assert tables == {f"{t}.{f}" for t in ("cases", "paper") for f in ("csv", "md", "tex")} | {
         "analysis.txt"}
     figs = {p.name for p in stem.with_name(stem.name + "_figures").iterdir()}
-    assert figs == {f"{n}.{e}" for n in figures.FIGURES for e in ("png", "pdf")}
+    assert figs == {f"{n}.png" for n in figures.FIGURES}      # PDF on request (plot)
+
+
+def test_figures_drawn_side_by_side_are_those_drawn_one_by_one(ds, tmp_path):
+    one, skipped_one = figures.write_figures(ds, tmp_path / "one", ("png",), processes=1)
+    two, skipped_two = figures.write_figures(ds, tmp_path / "two", ("png",), processes=2)
+    assert [p.name for p in one] == [p.name for p in two] and skipped_one == skipped_two
+    assert all(a.stat().st_size == b.stat().st_size for a, b in zip(one, two))
 
 
 def test_plot_command(small_study, tmp_path, forbid_fe, capsys):
-    from shell_adhesion.study.cli import main
+    from shell_adhesion.cli import main
     assert main(["plot", str(small_study), "--out", str(tmp_path / "f"), "--format", "png"]) == 0
     assert len(list((tmp_path / "f").glob("*.png"))) == len(figures.FIGURES)
     assert "6 files in" in capsys.readouterr().out
@@ -168,7 +175,7 @@ def test_plot_command(small_study, tmp_path, forbid_fe, capsys):
 
 def test_a_base_without_some_factors_uses_the_middle_of_their_axis(ds, tmp_path):
     """A grid-only factor has no base value: figures and tables still come out."""
-    from shell_adhesion.study.products import write_tables
+    from shell_adhesion.analysis.products import write_tables
     grid = ds.copy()
     del grid.attrs["base_C10_MPa"], grid.attrs["base_gamma_J_m2"]
     assert base_point(grid) == dict(C10=0.3, t_over_R=0.15, h_over_R=1.0, gamma=30.0)

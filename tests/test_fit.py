@@ -13,8 +13,8 @@ import pytest
 
 from shell_adhesion import fit_curve
 from shell_adhesion.solver.fit import gamma_curve
-from shell_adhesion.solver.geometry import InputError
-from shell_adhesion.study.cli import main
+from shell_adhesion.errors import InputError
+from shell_adhesion.cli import main
 
 from conftest import ENV
 

@@ -10,7 +10,7 @@ the default mesh and 1.016 on the fine one at a/R = 0.03), while P converges fas
 import numpy as np
 import pytest
 
-from shell_adhesion.solver import theory
+from shell_adhesion import theory
 from shell_adhesion.solver.case import solve_loading
 
 from validation import finite_body_within, hertz_ratio, within

@@ -57,7 +57,8 @@ def test_the_hard_exit_is_disarmed_outside_its_block():
 # a run whose shutdown after Ctrl-C never ends (as a dask close that waits forever would)
 HUNG_RUN = textwrap.dedent("""
     import sys, time
-    from shell_adhesion.study import cli, run
+    from shell_adhesion import cli
+    from shell_adhesion.study import run
 
     def never_ends(*args, **kwargs):
         try:

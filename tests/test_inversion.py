@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from shell_adhesion.solver import solve_paths
-from shell_adhesion.solver.energy import equilibrium
+from shell_adhesion.energy import equilibrium
 
 
 @pytest.fixture(scope="module")

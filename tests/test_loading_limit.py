@@ -5,7 +5,8 @@ import pytest
 
 from shell_adhesion.solver import quality as quality_module
 from shell_adhesion.solver.case import solve_loading, solve_paths
-from shell_adhesion.solver.path import QualityError, load
+from shell_adhesion.solver.path import load
+from shell_adhesion.errors import QualityError
 
 
 def _all_pass(loading):

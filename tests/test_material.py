@@ -14,7 +14,8 @@ import pickle
 import numpy as np
 import pytest
 
-from shell_adhesion.solver.geometry import InputError, check_cap
+from shell_adhesion.solver.geometry import check_cap
+from shell_adhesion.errors import InputError
 from shell_adhesion.solver.scaling import check_finite
 from shell_adhesion.solver.material import (NEO_HOOKE, Material, UnstableMaterial,
                                             cauchy_stress, energy, homogeneous_stress,

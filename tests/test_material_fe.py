@@ -15,8 +15,8 @@ from shell_adhesion.solver.forms import deformation, discretise, residual, tange
 from shell_adhesion.solver.geometry import Cap
 from shell_adhesion.solver.material import Material, cauchy_stress, limit_exceeded, limit_state
 from shell_adhesion.solver.mesh import cap_mesh, mesh_spec, scaled
-from shell_adhesion.solver.path import (LOCK_UP, ConvergenceError, MaterialLimitError, Settings,
-                                        Timer, _Problem, load)
+from shell_adhesion.solver.path import LOCK_UP, Settings, Timer, _Problem, load
+from shell_adhesion.errors import ConvergenceError, MaterialLimitError
 
 C10 = 0.7
 MATERIALS = {

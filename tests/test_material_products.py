@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from shell_adhesion.study import figures, tables
-from shell_adhesion.study.analysis import along
-from shell_adhesion.study.products import base_material, write_tables
+from shell_adhesion.analysis import along, figures, tables
+from shell_adhesion.analysis.slices import base_material, material_label
+from shell_adhesion.analysis.products import write_tables
 
 FORCES = ("P_star", "P_dagger", "P_eq", "loading_P")
 
@@ -42,7 +42,7 @@ def test_paper_table_names_the_solid(swept):
     assert ours["P* (fixed load), gamma = 30 J/m^2"] == P       # the base solid, C01/C10 = 0.5
     # the C01/C10 = 0 slice is the paper's solid: no label
     nh = swept.sel(C01_over_C10=0.0).assign_attrs(material_C01_over_C10=0.0)
-    assert tables.material_label(nh)[1] and "ours for" not in tables.comparison_table(nh).title
+    assert material_label(nh)[1] and "ours for" not in tables.comparison_table(nh).title
 
 
 def test_tables_written_for_a_material_study(swept, tmp_path):

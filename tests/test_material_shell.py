@@ -7,7 +7,7 @@ import functools
 import numpy as np
 import pytest
 
-from shell_adhesion.solver import theory
+from shell_adhesion import theory
 from shell_adhesion.solver.case import (relax_from, relaxation_starts, relaxation_task,
                                         solve_loading, solve_paths)
 from shell_adhesion.solver.material import Material

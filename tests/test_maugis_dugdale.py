@@ -8,7 +8,7 @@ import math
 import pytest
 
 from shell_adhesion.solver import maugis_dugdale as md
-from shell_adhesion.solver import theory
+from shell_adhesion import theory
 
 JKR_A_STAR = 1.5 ** (1 / 3)                                  # A*^3 = 3/2
 JKR_D_STAR = JKR_A_STAR ** 2 - 2 / 3 * math.sqrt(6 * JKR_A_STAR)   # Dbar = A^2 - (2/3) sqrt(6 A)

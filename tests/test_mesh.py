@@ -4,7 +4,8 @@ import math
 import numpy as np
 import pytest
 
-from shell_adhesion.solver.geometry import Cap, InputError, check_cap
+from shell_adhesion.solver.geometry import Cap, check_cap
+from shell_adhesion.errors import InputError
 from shell_adhesion.solver.mesh import cap_mesh, mesh_spec
 from shell_adhesion.solver.forms import discretise
 

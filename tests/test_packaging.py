@@ -9,7 +9,7 @@ import pytest
 import yaml
 
 import shell_adhesion as sa
-from shell_adhesion.study.cli import main
+from shell_adhesion.cli import main
 from shell_adhesion.study.config import StudyError
 
 from conftest import REPO
@@ -51,7 +51,7 @@ def test_one_source_of_the_version():
     project = tomllib.loads((REPO / "pyproject.toml").read_text())
     assert "version" not in project["project"] and "version" in project["project"]["dynamic"]
     assert (project["tool"]["setuptools"]["dynamic"]["version"]
-            == {"attr": "shell_adhesion.solver.__version__"})
+            == {"attr": "shell_adhesion.__version__"})
 
 
 def test_namespace_has_no_import_module():

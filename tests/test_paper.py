@@ -1,6 +1,6 @@
 """Validation 7: the paper's numbers for its base shell (R = h = 20 mm, t = 3 mm,
 C10 = 0.3 MPa, gamma = 30 J/m^2), as the tool's own comparison gives them
-(`shell-adhesion tables results/paper.nc --table paper`, study.analysis.paper_comparison)
+(`shell-adhesion tables results/paper.nc --table paper`, analysis.paper.paper_comparison)
 from a one-shell study (loading to delta = 0.25 R, no error-bar companions).
 
 - Every run (coarse mesh, no-slip, about 25 s): the paper's published numbers, each within
@@ -16,7 +16,7 @@ import functools
 
 import pytest
 
-from shell_adhesion.study.analysis import paper_comparison
+from shell_adhesion.analysis import paper_comparison
 from shell_adhesion.study.run import execute
 
 from validation import loading_P, within

@@ -2,7 +2,7 @@
 import numpy as np
 import pytest
 
-from shell_adhesion.solver.energy import total_energy_fixed_grips, total_energy_fixed_load
+from shell_adhesion.energy import total_energy_fixed_grips, total_energy_fixed_load
 from shell_adhesion.solver.postprocess import profiles, von_mises_field
 
 

@@ -1,19 +1,21 @@
 """The shipped pull-off maps against FE cases off their grid, `design` on a case whose
 optimum is known, and the `map` / `design` commands' bad input.
 
-The coarse map is checked in CI against coarse cases; the default map (slow) against
-default-mesh cases with their error bars.  Map and case come from different meshes of the
+The shipped (coarse) map is checked in CI against coarse cases; a default-mesh map built
+by the user (slow, SHELL_ADHESION_DEFAULT_MAP) against default-mesh cases with their error
+bars.  Map and case come from different meshes of the
 same family (each shell meshed for itself), so their difference is held to the map's
 whole stated error: interpolation and FE in quadrature.
 """
 import json
 import math
+import os
 
 import pytest
 
 import shell_adhesion as sa
-from shell_adhesion.study.cli import main
-from shell_adhesion.study.pull_off_map import SHIPPED, map_path, pull_off_map
+from shell_adhesion.cli import main
+from shell_adhesion.study.pull_off_map import DEFAULT_MAP, SHIPPED, map_path, pull_off_map
 
 R_MM, C10_MPA = 20.0, 1.0
 # off the grid (t/R 0.05 ... 0.4 x h/R 0.5, 0.75, 1 x gamma_hat 0.0003 ... 0.03): a thin
@@ -60,16 +62,33 @@ def test_coarse_map_against_coarse_cases_off_its_grid():
 
 @pytest.mark.slow
 def test_default_map_against_default_cases_off_its_grid():
-    _check("default", "default", True, stated_max=STATED_MAX)
+    # the default-mesh map is not shipped (hours to build): SHELL_ADHESION_DEFAULT_MAP
+    # names a file built by `shell-adhesion map build` from `shell-adhesion example map`
+    built = os.environ.get("SHELL_ADHESION_DEFAULT_MAP")
+    if not built:
+        pytest.skip("SHELL_ADHESION_DEFAULT_MAP (a default-mesh map file) not set")
+    _check(built, "default", True, stated_max=STATED_MAX)
 
 
 def test_shipped_maps_are_in_the_package_with_their_studies():
+    assert DEFAULT_MAP in SHIPPED
     for name in SHIPPED:
         assert map_path(name).is_file()
         pm = pull_off_map(name)
         assert pm.bounds["t_over_R"] == (0.05, 0.4) and pm.bounds["h_over_R"] == (0.5, 1.0)
         assert pm.ds.attrs["interface"] == "no_slip"
+        assert pm.ds.attrs["mesh"] == name
     assert sa.examples.study_text("map").count("mesh: default") == 1
+    assert sa.examples.study_text("map-coarse").count("mesh: coarse") == 1
+
+
+def test_a_map_not_shipped_says_how_to_build_it(capsys):
+    with pytest.raises(ValueError, match="'default' is not shipped.*map build default.yaml"):
+        map_path("default")
+    assert main(["map", "query", "--map", "default", "--R", "20", "--t", "2", "--h", "15",
+                 "--C10", "1", "--gamma", "30"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--map" in err[0] and "example map" in err[0], err
 
 
 def test_design_puts_the_thickness_on_its_bound_and_the_case_agrees():

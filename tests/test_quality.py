@@ -8,7 +8,7 @@ from shell_adhesion.solver.case import solve_loading
 from shell_adhesion.solver.forms import discretise
 from shell_adhesion.solver.geometry import Cap
 from shell_adhesion.solver.mesh import cap_mesh, mesh_spec
-from shell_adhesion.solver.path import QualityError
+from shell_adhesion.errors import QualityError
 from shell_adhesion.solver.quality import J_RANGE, quality
 
 

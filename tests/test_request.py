@@ -11,7 +11,7 @@ import pytest
 
 from shell_adhesion.solver import request as rq
 from shell_adhesion.solver.case import UNIFORM_SHARE, solve_paths
-from shell_adhesion.solver.energy import InGradedZone, NotBracketed
+from shell_adhesion.energy import InGradedZone, NotBracketed
 from shell_adhesion.solver.geometry import Cap, delta_bound, domain_delta_max
 from shell_adhesion.solver.mesh import mesh_spec, uniform_radius
 from shell_adhesion.solver.quality import J_RANGE, rim_corner_elements

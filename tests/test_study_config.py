@@ -3,10 +3,11 @@ from pathlib import Path
 
 import pytest
 
-from shell_adhesion.solver.geometry import InputError, check_cap
+from shell_adhesion.solver.geometry import check_cap
+from shell_adhesion.errors import InputError
 from shell_adhesion.study.config import MAX_BYTES, StudyError, load_study
 from shell_adhesion.study.plan import make_plan
-from shell_adhesion.study.cli import main
+from shell_adhesion.cli import main
 
 REPO = Path(__file__).resolve().parents[1]
 

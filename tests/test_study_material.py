@@ -64,6 +64,6 @@ def test_c01_sweep_is_a_dimension_and_zero_is_neo_hooke(tmp_path):
     assert mpa.C01_MPa.sel(C10=0.3).values.tolist() == [0.0, 0.15]
     np.testing.assert_array_equal(mpa.P_star.sel(**at).values, mr.P_star.sel(**at).values)
     from shell_adhesion.study.config import validate
-    from shell_adhesion.study.dataset import study_of
+    from shell_adhesion.cube import study_of
     back = validate(study_of(mpa))
     assert back.grid == {"C01_MPa": (0.0, 0.15)} and back.base["C10_MPa"] == 0.3

@@ -9,8 +9,9 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from shell_adhesion.study import analysis, tables
-from shell_adhesion.study.cli import main
+from shell_adhesion import analysis
+from shell_adhesion.analysis import tables
+from shell_adhesion.cli import main
 
 CASE_VARS = ("C10", "gamma", "P_star", "delta_star", "a_star", "P_dagger", "delta_dagger",
              "a_dagger", "a0", "eta")

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from shell_adhesion.study.cli import main
+from shell_adhesion.cli import main
 from shell_adhesion.study.config import TASK_TIMEOUT_S, load_study
 from shell_adhesion.study.run import TaskTimeout, _deadline, execute
 

@@ -8,7 +8,8 @@ import textwrap
 import pytest
 
 from shell_adhesion.solver.case import relaxation_starts
-from shell_adhesion.solver.path import ConvergenceError, Settings, load
+from shell_adhesion.solver.path import Settings, load
+from shell_adhesion.errors import ConvergenceError
 
 from conftest import ENV, REPO
 

@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from shell_adhesion.solver import theory
+from shell_adhesion import theory
 from shell_adhesion.solver.material import Material
 
 R, C10, GAMMA = 20.0, 0.3, 30.0

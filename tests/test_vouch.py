@@ -6,7 +6,7 @@ import pytest
 
 from conftest import GAMMA_HAT
 from shell_adhesion.solver.case import PathSet, solve_paths
-from shell_adhesion.solver.energy import Equilibrium, OutOfRange, pull_off
+from shell_adhesion.energy import Equilibrium, OutOfRange, pull_off
 from shell_adhesion.solver.geometry import Cap
 from shell_adhesion.solver.mesh import mesh_spec, uniform_arc, uniform_radius
 

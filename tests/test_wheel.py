@@ -73,7 +73,7 @@ def test_coarse_case_from_the_wheel(dist, tmp_path):
         whl.extractall(site)
     env = dict(os.environ, PYTHONPATH=str(site), MPLBACKEND="Agg")
     out = subprocess.run([sys.executable, "-c", "import shell_adhesion, sys; "
-                          "print(shell_adhesion.__file__); from shell_adhesion.study.cli "
+                          "print(shell_adhesion.__file__); from shell_adhesion.cli "
                           "import main; sys.exit(main(['case', '--R', '20', '--t', '3', "
                           "'--h', '20', '--C10', '0.3', '--gamma', '30', '--mesh', 'coarse']))"],
                          cwd=tmp_path, env=env, capture_output=True, text=True, timeout=300)

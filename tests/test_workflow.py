@@ -6,7 +6,7 @@ import shutil
 import numpy as np
 import pytest
 
-from shell_adhesion.study import analysis
+from shell_adhesion import analysis
 from shell_adhesion.study.run import execute
 
 from conftest import REPO

@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 
-from shell_adhesion.solver import theory
+from shell_adhesion import theory
 from shell_adhesion.solver.material import NEO_HOOKE, Material
 from shell_adhesion.solver.scaling import force_N, length_mm
 

@@ -1,4 +1,4 @@
-"""Stored Datasets as netCDF files: written atomically (catalogue.atomic), read from one
+"""Stored Datasets as netCDF files: written atomically (shell_adhesion.atomic), read from one
 in-memory copy, so the bytes checked against the index's sha256 are the bytes decoded.
 
 The catalogue does not know what a Dataset holds: it adds the attributes `fingerprint`
@@ -12,7 +12,7 @@ import dask
 import netCDF4
 import xarray as xr
 
-from .atomic import atomic_path
+from shell_adhesion.atomic import atomic_path
 
 
 class CorruptFile(Exception):
@@ -20,7 +20,7 @@ class CorruptFile(Exception):
 
 
 def write_atomic(ds: xr.Dataset, path, encoding=None) -> tuple:
-    """Write `ds` to `path` atomically (catalogue.atomic); returns (sha256 hex, size in
+    """Write `ds` to `path` atomically (shell_adhesion.atomic); returns (sha256 hex, size in
     bytes) of the bytes written."""
     # with a dask.distributed client active, xarray would take its write lock on the
     # scheduler (a round trip per file, and a hang or an error at exit once the scheduler

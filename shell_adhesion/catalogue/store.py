@@ -31,7 +31,7 @@ import sqlite3
 import xarray as xr
 
 from . import files
-from .atomic import clean_temporaries
+from shell_adhesion.atomic import clean_temporaries
 from .fingerprint import canonical_json, family, fingerprint
 
 ENV_VAR = "SHELL_ADHESION_CATALOGUE"

@@ -1,19 +1,22 @@
 """shell-adhesion solver: one soft spherical-cap shell on a rigid plane (pure computation).
 
 Public entry points (dimensionless inside, see `solver.scaling` for units):
-`solve_paths` (loading + relaxation paths of one shell), `PathSet.pull_off`,
-`solver.theory` (Hertz, JKR, eq. 3), `solver.geometry.check_cap` / `check_delta_max` /
+`solve_paths` (loading + relaxation paths of one shell), `PathSet.pull_off` (Maugis'
+energy method, `shell_adhesion.energy`), `solver.geometry.check_cap` / `check_delta_max` /
 `check_gamma` (the supported domain), `solver.quality` (element quality of a state),
-`Material` (the solid).
+`Material` (the solid).  The closed forms the solver is checked against (Hertz, JKR, eq. 3)
+are in `shell_adhesion.theory`, its exceptions in `shell_adhesion.errors`.
 """
+from shell_adhesion import __version__
+from shell_adhesion.errors import ConvergenceError, InputError, MaterialLimitError, QualityError
+
 from .case import (GAMMA_MAX, PathSet, Relaxation, relaxation_starts, relaxation_task,
                    solve_loading, solve_paths)
 from .contact import INTERFACES
-from .geometry import Cap, InputError, check_cap, check_delta_max, check_gamma
+from .geometry import Cap, check_cap, check_delta_max, check_gamma
 from .material import MODELS, NEO_HOOKE, Material
-from .path import ConvergenceError, MaterialLimitError, QualityError, Settings
+from .path import Settings
 
-__version__ = "0.1.0"
 __all__ = ["GAMMA_MAX", "PathSet", "Relaxation", "relaxation_starts", "relaxation_task",
            "solve_loading", "solve_paths", "INTERFACES", "Cap", "InputError", "check_cap",
            "check_delta_max", "check_gamma", "ConvergenceError", "MaterialLimitError",

@@ -29,7 +29,7 @@ from .cohesive import Interface
 from .contact import constraints, gaps, rim_load
 from .forms import strain_energy, tangent
 from .linear import LinearSolver, SingularTangent, Timer
-from .path import ConvergenceError
+from shell_adhesion.errors import ConvergenceError
 
 
 @dataclass(frozen=True)

@@ -13,11 +13,12 @@ import time
 import numpy as np
 
 from .cavity import OPEN, Cavity, bind, first_touch, lifted
-from .energy import (Bridged, EnergySurface, InGradedZone, NotBracketed, OutOfRange,
-                     energy_surface, equilibrium, pull_off)
+from shell_adhesion.energy import (Bridged, EnergySurface, InGradedZone, NotBracketed,
+                                   OutOfRange, energy_surface, equilibrium, pull_off)
 from .forms import Discretisation, discretise
 from .contact import check_interface
-from .geometry import GAMMA_MAX, Cap, InputError, check_delta_max, check_gamma, shown
+from .geometry import GAMMA_MAX, Cap, check_delta_max, check_gamma, shown
+from shell_adhesion.errors import InputError
 from .material import NEO_HOOKE, Material
 from .mesh import CapMesh, cap_mesh, mesh_spec, uniform_radius
 from .path import LoadingPath, RelaxationPath, Settings, State, load, relax
@@ -256,7 +257,7 @@ class PathSet:
         """Equilibrium curve and pull-off for gamma / (C10 R).
 
         Raises OutOfRange (a ValueError) where the paths cannot vouch for the pull-off:
-        its curve is not bracketed (solver.energy.pull_off); a pull-off radius lies beyond
+        its curve is not bracketed (shell_adhesion.energy.pull_off); a pull-off radius lies beyond
         UNIFORM_SHARE of the mesh's evenly meshed radius (`mesh.uniform_radius`); or a pair
         of paths near a pull-off radius stopped before G reached gamma, so the curve is
         bridged there (`unreached`).  Bridged near a_dagger only, the fixed-load pull-off is

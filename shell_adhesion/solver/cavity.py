@@ -27,8 +27,9 @@ from skfem import MeshQuad2
 
 from .contact import constraints
 from .forms import discretise
-from .geometry import InputError
-from .path import ConvergenceError, Settings, Timer, _Problem
+from shell_adhesion.errors import InputError
+from .path import Settings, Timer, _Problem
+from shell_adhesion.errors import ConvergenceError
 
 MODES = ("open", "pressure", "sealed")
 P_ATM_KPA = 101.325           # standard atmosphere [kPa]

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .forms import Discretisation
-from .geometry import InputError
+from shell_adhesion.errors import InputError
 
 INTERFACES = ("no_slip", "frictionless")
 

@@ -29,9 +29,9 @@ from scipy.optimize import brentq, least_squares
 from scipy.stats import t as student_t
 
 from .case import PathSet, Relaxation
-from .energy import OutOfRange, equilibrium, pull_off
-from .geometry import InputError
-from .theory import hertz_P_N, jkr_P_star_N
+from shell_adhesion.energy import OutOfRange, equilibrium, pull_off
+from shell_adhesion.errors import InputError
+from shell_adhesion.theory import hertz_P_N, jkr_P_star_N
 
 MIN_LOADING_POINTS = 5
 JUMP_SHARE = 0.5        # a rise of P by this share of |min P| between two retraction points is the jump-off

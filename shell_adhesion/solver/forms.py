@@ -17,6 +17,7 @@ from skfem import CellBasis, ElementQuad1, ElementQuad2
 
 from .material import NEO_HOOKE, Material, energy, lagrangian_derivatives, limit_exceeded
 from .mesh import CapMesh
+from shell_adhesion.errors import ConvergenceError
 
 
 @dataclass(frozen=True, eq=False)
@@ -156,7 +157,6 @@ def _checked(d: Discretisation, f):
     """f, unless a Gent solid reaches its limit I1bar - 3 = Jm somewhere (ConvergenceError)."""
     ratio = limit_exceeded(f, d.material)
     if not ratio < 1.0 and np.isfinite(ratio):
-        from .path import ConvergenceError  # path imports this module
         raise ConvergenceError(
             f"gent limit reached: I1bar - 3 = {ratio * d.material.Jm:.6g} >= Jm = "
             f"{d.material.Jm:g} (the solid locks up; lower delta or raise Jm)")

@@ -8,9 +8,7 @@ from dataclasses import dataclass
 import math
 import numbers
 
-
-class InputError(ValueError):
-    """Bad input: the message names the field, the value and the rule."""
+from shell_adhesion.errors import InputError
 
 
 def shown(value) -> str:

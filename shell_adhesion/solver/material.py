@@ -29,7 +29,8 @@ import numbers
 
 import numpy as np
 
-from .geometry import InputError, shown
+from .geometry import shown
+from shell_adhesion.errors import InputError
 
 _RR, _RZ, _ZR, _ZZ, _TT = range(5)
 

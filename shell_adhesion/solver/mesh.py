@@ -11,7 +11,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 from skfem import MeshQuad1, MeshQuad2, ElementQuad2
 
-from .geometry import Cap, InputError
+from .geometry import Cap
+from shell_adhesion.errors import InputError
 
 
 @dataclass(frozen=True)

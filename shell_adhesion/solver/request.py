@@ -27,7 +27,7 @@ import numpy as np
 
 from .case import UNIFORM_SHARE, PathSet, solve_paths, start_key
 from .cavity import OPEN, Cavity
-from .energy import Bridged, InGradedZone, NotBracketed, OutOfRange
+from shell_adhesion.energy import Bridged, InGradedZone, NotBracketed, OutOfRange
 from .geometry import GAMMA_MAX, Cap, delta_bound
 from .material import NEO_HOOKE, Material
 from .mesh import mesh_spec

@@ -13,7 +13,8 @@ its own field names.
 import math
 from numbers import Real
 
-from .geometry import InputError, shown
+from .geometry import shown
+from shell_adhesion.errors import InputError
 
 R_MM_RANGE = (1e-3, 1e4)        # outer radius R [mm]: 1 um to 10 m
 C10_MPA_RANGE = (1e-6, 1e4)     # neo-Hookean C10 [MPa]: 1 Pa to 10 GPa

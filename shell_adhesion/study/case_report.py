@@ -8,11 +8,12 @@ abscissas as coordinates so that ``ds.P_eq.sel(gamma=30).plot(x="a_eq_mm")`` wor
 import numpy as np
 import xarray as xr
 
-from shell_adhesion.solver import theory
+from shell_adhesion.cube import CURVES, PULL_OFF     # the cube's names, units and long names
+from shell_adhesion import theory
 from shell_adhesion.solver.error_bars import curve_error, error_bar, observed_order
 from shell_adhesion.solver.scaling import energy_mJ, force_N, length_mm
 
-from .dataset import _CURVES, _PULL_OFF     # the cube's names, units and long names
+from .case_input import cavity_kPa, material_MPa
 
 def _attrs(units, long_name):
     return dict(units=units, long_name=long_name)
@@ -52,13 +53,13 @@ def _values(result):
     def dimensional(po, g):
         if po is None:
             return None
-        v = {k: float(conv[kind](getattr(po, k))) for k, (_, _, kind) in _PULL_OFF.items()}
+        v = {k: float(conv[kind](getattr(po, k))) for k, (_, _, kind) in PULL_OFF.items()}
         v["eta"] = theory.eta_of(v["P_star"], R, inp.t_mm, C10, g, inp.material)
         return v
 
     for g in inp.gamma_J_m2:
         if g in refused:
-            values = {k: np.nan for k in (*_PULL_OFF, "eta")}
+            values = {k: np.nan for k in (*PULL_OFF, "eta")}
             values.update(status="out of range", reason=refused[g])
             empty = np.zeros(0)
             curve = dict(a=empty, delta=empty, P=empty, stable_fixed_load=empty.astype(bool),
@@ -71,7 +72,7 @@ def _values(result):
                          stable_fixed_grips=np.asarray(eq.stable_fixed_grips, dtype=bool))
         if cps is not None:
             c2, c3 = dimensional(coarser.get(g), g), dimensional(coarsest.get(g), g)
-            for k in (*_PULL_OFF, "eta"):
+            for k in (*PULL_OFF, "eta"):
                 x2 = np.nan if c2 is None else c2[k]
                 x3 = None if c3 is None else c3[k]
                 values[f"{k}_error"] = float(error_bar(values[k], x2, x3))
@@ -94,16 +95,30 @@ def _list(x, digits=10):
     return [_num(v, digits) for v in np.asarray(x, dtype=float)]
 
 
-def as_dict(result) -> dict:
+def as_dict(result, curves: bool = False) -> dict:
     """Plain JSON-able data: input, material (model, coefficients in MPa, D1 in 1/MPa),
-    loading, and with gamma relaxation, equilibrium and pull_off (one entry per gamma),
-    provenance."""
-    from .case import material_MPa
+    pull_off (one entry per gamma: values with units in their names, error bars, status)
+    and provenance; with `curves` also loading, and with gamma relaxation and equilibrium
+    (the curves, a few thousand numbers)."""
 
     loading, relaxations, adhesion = _values(result)
     out = {"input": result.input.as_dict(),
-           "material": material_MPa(result.input.material, result.input.C10_MPa),
-           "loading": {"delta_mm": _list(loading["delta"]), "P_N": _list(loading["P"]),
+           "material": material_MPa(result.input.material, result.input.C10_MPa)}
+    if curves:
+        out.update(_curves_dict(result, loading, relaxations, adhesion))
+    if adhesion:
+        out["pull_off"] = [_pull_off_dict(g, v) for g, v, _ in adhesion]
+        missing = (result.provenance.get("error_bars") or {}).get("not_given", {})
+        for po in out["pull_off"]:
+            if f"{po['gamma_J_m2']:g}" in missing:     # the error bar says why it is not there
+                po["error_note"] = missing[f"{po['gamma_J_m2']:g}"]
+    out["provenance"] = result.provenance
+    return out
+
+
+def _curves_dict(result, loading, relaxations, adhesion) -> dict:
+    """The curves in units: loading, and with gamma relaxation and equilibrium."""
+    out = {"loading": {"delta_mm": _list(loading["delta"]), "P_N": _list(loading["P"]),
                        "a_mm": _list(loading["a"]), "U_E_mJ": _list(loading["U"])}}
     closed = result.input.cavity.closed
     if closed:   # the enclosed volume and the gauge pressure of a closed cavity
@@ -124,12 +139,6 @@ def as_dict(result) -> dict:
              "stable_fixed_load": [bool(v) for v in c["stable_fixed_load"]],
              "stable_fixed_grips": [bool(v) for v in c["stable_fixed_grips"]]}
             for g, v, c in adhesion if v["status"] == "ok"]
-        out["pull_off"] = [_pull_off_dict(g, v) for g, v, _ in adhesion]
-        missing = (result.provenance.get("error_bars") or {}).get("not_given", {})
-        for po in out["pull_off"]:
-            if f"{po['gamma_J_m2']:g}" in missing:     # the error bar says why it is not there
-                po["error_note"] = missing[f"{po['gamma_J_m2']:g}"]
-    out["provenance"] = result.provenance
     return out
 
 
@@ -204,7 +213,7 @@ def as_dataset(result) -> xr.Dataset:
                           _attrs("mm", "rim displacement delta on loading without adhesion")),
     }
     closed = inp.cavity.closed
-    if closed:      # a closed cavity's volume and gauge pressure (study.case.cavity_kPa)
+    if closed:      # a closed cavity's volume and gauge pressure (study.case_input.cavity_kPa)
         data["loading_V"] = ("loading_state", loading["V"], _attrs(
             "mm3", "cavity volume V (inner surface and lid) on loading"))
         data["loading_p"] = ("loading_state", loading["p"], _attrs(
@@ -235,14 +244,14 @@ def as_dataset(result) -> xr.Dataset:
         coords["relaxation_state"] = (
             "relaxation_state", np.arange(data["relaxation_P"][1].shape[1]),
             _attrs("1", "index along a relaxation path (delta decreasing from loading)"))
-        for k, (units, long_name, _) in _PULL_OFF.items():
+        for k, (units, long_name, _) in PULL_OFF.items():
             data[k] = ("gamma", np.array([v[k] for _, v, _ in adhesion]),
                        _attrs(units, long_name))
         data["eta"] = ("gamma", np.array([v["eta"] for _, v, _ in adhesion]), _attrs(
             "1", "eta of eq. 3: |P*| / [gamma^4 R^4 (1 - nu^2) / (E t^2)]^(1/3)"))
-        for k in (*_PULL_OFF, "eta"):
+        for k in (*PULL_OFF, "eta"):
             if f"{k}_error" in adhesion[0][1]:
-                units = _PULL_OFF[k][0] if k in _PULL_OFF else "1"
+                units = PULL_OFF[k][0] if k in PULL_OFF else "1"
                 data[f"{k}_error"] = ("gamma", np.array([v[f"{k}_error"] for _, v, _ in adhesion]),
                                       _attrs(units, f"discretisation error estimate of {k}"))
                 data[f"{k}_order"] = ("gamma", np.array([v[f"{k}_order"] for _, v, _ in adhesion]),
@@ -256,7 +265,7 @@ def as_dataset(result) -> xr.Dataset:
         data["jkr_P_star"] = ("gamma", np.array([v["jkr_P_star"] for _, v, _ in adhesion]),
                               _attrs("N", "JKR pull-off force of a solid sphere of radius R"))
         E = ("gamma", "point")
-        for k, (units, long_name) in _CURVES.items():
+        for k, (units, long_name) in CURVES.items():
             values = _padded([c[k.removesuffix("_mm").removesuffix("_eq")].astype(float)
                               for c in curves])
             (coords if k == "a_eq_mm" else data)[k] = (E, values, _attrs(units, long_name))
@@ -282,7 +291,6 @@ def as_dataset(result) -> xr.Dataset:
     if inp.delta_max_mm is not None:
         attrs["delta_max_mm"] = inp.delta_max_mm
     if closed:
-        from .case import cavity_kPa
         attrs.update({f"cavity_{k}": v for k, v in
                       cavity_kPa(inp.cavity, inp.C10_MPa).items() if v is not None},
                      cavity_apex_uz_mm=prov["cavity_touch"]["apex_uz_mm"],

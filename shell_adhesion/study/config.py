@@ -55,7 +55,7 @@ A closed cavity's pressures enter the FE problem divided by C10 (`solver.cavity.
 with a closed cavity every C10 (and every p_kPa) is its own set of FE paths.  The gauge
 pressure p_kPa of `cavity: {mode: pressure}` may be a factor of `sweeps` or `grid` (a cube
 dimension); the cavity block gives its base value.  Every requested (C10, p_kPa) is checked
-by `study.case.cavity_of` (the `case` command's rules), named by its place in the file.
+by `study.case_input.cavity_of` (the `case` command's rules), named by its place in the file.
 
 The rules are the solver's, each in one place: R_mm and C10_MPa `solver.scaling.check_R`
 / `check_C10`, every requested shell `solver.geometry.check_cap` and `check_delta_max`,
@@ -77,29 +77,22 @@ import re
 
 import yaml
 
-from shell_adhesion.solver.geometry import GAMMA_MAX, check_gamma
+from shell_adhesion.cube import (CAVITY_FACTORS, CAVITY_KEYS, COEFFICIENTS, FACTORS, IN_MPA,
+                                 KEYS, OUTPUTS, RATIOS)
+from shell_adhesion.errors import InputError
 from shell_adhesion.solver.contact import INTERFACES
-from shell_adhesion.solver.geometry import InputError, check_cap, check_delta_max, shown
+from shell_adhesion.solver.geometry import GAMMA_MAX, check_cap, check_delta_max, check_gamma, shown
 from shell_adhesion.solver.material import MODELS, NEO_HOOKE, Material, UnstableMaterial
 from shell_adhesion.solver.scaling import check_C10, check_finite, check_R, gamma_hat
 
-FACTORS = ("C10_MPa", "t_over_R", "h_over_R", "gamma_J_m2")
-RATIOS = ("C01_over_C10", "C20_over_C10", "C30_over_C10", "Jm", "D1_times_C10")
-# the same coefficients in MPa (D1 in 1/MPa): the ratio of each (Jm is a ratio already)
-IN_MPA = {"C01_MPa": "C01_over_C10", "C20_MPa": "C20_over_C10", "C30_MPa": "C30_over_C10",
-          "D1_per_MPa": "D1_times_C10"}
-COEFFICIENTS = RATIOS + tuple(IN_MPA)
+from .case_input import cavity_of
+
 # the coefficients of each model (D1 in any form, for any model)
 _OF_MODEL = {"neo_hooke": (), "mooney_rivlin": ("C01_over_C10",),
              "yeoh": ("C20_over_C10", "C30_over_C10"), "gent": ("Jm",)}
 _RATIO_DIGITS = 12          # a ratio of MPa values is rounded so equal ratios share paths
 MESHES = ("coarse", "default", "fine")
-KEYS = ("name", "description", "R_mm", "base", "sweeps", "grid", "material", "interface", "mesh",
-        "delta_max_over_R", "error_bars", "task_timeout_s", "outputs", "cavity")
-CAVITY_KEYS = ("mode", "p_kPa", "p0_kPa", "p_atm_kPa", "gas_exponent")
-CAVITY_FACTORS = ("p_kPa",)     # cavity parameters that sweeps and grid may vary
 TASK_TIMEOUT_S = 3600.0     # default wall-time limit of one FE task (a loading or one path)
-OUTPUTS = ("equilibrium_curves", "loading_curves", "relaxation_curves", "deformed_states")
 MAX_BYTES = 1_000_000       # a study file is a few lines; refuse anything over 1 MB
 _STEM = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]{0,99}")
 
@@ -473,7 +466,6 @@ def _cavity(doc, sweeps, grid) -> dict:
 def cavity_at(study: Study, point: dict):
     """The dimensionless cavity (`solver.cavity.Cavity`, pressures / C10) of a requested
     point ({factor: (value, place)}); StudyError naming the place when a rule fails."""
-    from .case import cavity_of     # study.case reads the cube's names: import when used
     if not study.cavity:
         from shell_adhesion.solver.cavity import OPEN
         return OPEN

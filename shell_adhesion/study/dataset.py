@@ -1,5 +1,5 @@
-"""The study's results as one labelled xarray Dataset written as netCDF (the only module
-that knows this layout).
+"""The study's results as one labelled xarray Dataset written as netCDF (the names of the
+layout are in `shell_adhesion.cube`, which the readers share).
 
 Dimensions ``C10`` (MPa), ``t_over_R``, ``h_over_R``, ``gamma`` (J/m^2): a full cube over
 the union of the study's values.  Only the requested points (the base, each sweep line,
@@ -43,7 +43,7 @@ cavity_p_atm_kPa, cavity_p0_kPa and cavity_gas_exponent (sealed).
 ``xarray.open_dataset("results/<name>.nc")`` is all a reader needs; the file passes the
 CF-1.8 compliance checker without a high-priority failure.
 """
-from dataclasses import asdict, fields
+from dataclasses import asdict
 import hashlib
 from datetime import datetime, timezone
 from pathlib import Path
@@ -53,42 +53,20 @@ import xarray as xr
 
 from shell_adhesion import solver
 from shell_adhesion.catalogue import write_atomic
+from shell_adhesion.cube import (CURVE_COORDS, CURVES, DIMS, GAMMA_UNITS, PULL_OFF, STATUS,
+                                 study_attrs)
 from shell_adhesion.solver import case, request
 from shell_adhesion.solver.cavity import P_ATM_KPA
 from shell_adhesion.solver.error_bars import curve_error, error_bar, observed_order
 from shell_adhesion.solver.material import NEO_HOOKE
 from shell_adhesion.solver.scaling import energy_mJ, force_N, gamma_hat, length_mm
-from shell_adhesion.solver.theory import eta_of
+from shell_adhesion.theory import eta_of
 
-from .config import CAVITY_FACTORS, CAVITY_KEYS, COEFFICIENTS, FACTORS, IN_MPA, KEYS, \
-    Outputs
+from .config import IN_MPA
 from .keys import solver_source_sha256
 from .plan import Plan
 
-DIMS = ("C10", "t_over_R", "h_over_R", "gamma")
-FACTOR_OF_DIM = dict(zip(DIMS, FACTORS))     # dimension -> the study file's name
-GAMMA_UNITS = "J/m^2"           # read by UDUNITS and pint's default registry ("J m-2" is not)
 INDEX_DTYPE = np.int32          # CF-1.8 has no 64-bit integers
-STATUS = ("ok", "not requested", "solver failed", "out of range")
-
-_PULL_OFF = {   # name: (units, long_name, kind) kind: force, length or 1
-    "P_star": ("N", "fixed-load pull-off force P* (most tensile stable load)", "force"),
-    "delta_star": ("mm", "rim displacement at fixed-load pull-off delta*", "length"),
-    "a_star": ("mm", "contact radius at fixed-load pull-off a*", "length"),
-    "P_dagger": ("N", "rim force at fixed-grips pull-off P_dagger", "force"),
-    "delta_dagger": ("mm", "fixed-grips pull-off displacement delta_dagger", "length"),
-    "a_dagger": ("mm", "contact radius at fixed-grips pull-off a_dagger", "length"),
-    "a0": ("mm", "contact radius at zero load a0 (NaN: not reached by the paths)", "length"),
-}
-_CURVES = {
-    "a_eq_mm": ("mm", "contact radius a along the equilibrium curve G = gamma"),
-    "delta_eq": ("mm", "rim displacement delta along the equilibrium curve"),
-    "P_eq": ("N", "rim force P along the equilibrium curve"),
-    "stable_fixed_load": ("1", "equilibrium stable at fixed load, dP/da > 0 (1 yes, 0 no)"),
-    "stable_fixed_grips": ("1", "equilibrium stable at fixed grips, d(delta)/da > 0 (1 yes, 0 no)"),
-}
-
-
 def _attrs(units, long_name, **more):
     return dict(units=units, long_name=long_name, **more)
 
@@ -98,7 +76,7 @@ def _evaluate(ps, surface, C10, R, t, gamma, material=NEO_HOOKE):
     material's small-strain modulus)."""
     eq, po = ps.pull_off(gamma_hat(gamma, C10, R), surface)
     conv = dict(force=lambda x: force_N(x, C10, R), length=lambda x: length_mm(x, R))
-    values = {k: conv[kind](getattr(po, k)) for k, (_, _, kind) in _PULL_OFF.items()}
+    values = {k: conv[kind](getattr(po, k)) for k, (_, _, kind) in PULL_OFF.items()}
     values["eta"] = eta_of(values["P_star"], R, t * R, C10, gamma, material)
     values["note"] = po.note            # why the fixed-grips values are not given (if not)
     curve = dict(a_eq_mm=length_mm(eq.a, R), delta_eq=length_mm(eq.delta, R),
@@ -376,16 +354,16 @@ def _build(plan: Plan, served: dict, failed: dict, history: str, material) -> xr
                                                                   ("coarsest", coarsest)))
                     results[i][0].update(_errors(results[i][0], c2, c3))
                     notes[i] = "; ".join(w for w in (why2, why3) if w)
-            except ValueError as e:     # solver.energy.OutOfRange and gamma > gamma_max
+            except ValueError as e:     # shell_adhesion.energy.OutOfRange and gamma > gamma_max
                 status[i], reason[i] = "out of range", str(e)
 
     n_point = max([len(c["a_eq_mm"]) for _, c in results.values()], default=0)
     n_load = max([len(ps.loading_delta) for _, ps in served.values()], default=0)
-    names = (*_PULL_OFF, "eta")
+    names = (*PULL_OFF, "eta")
     values = {k: np.full(shape, np.nan)
               for k in names + (tuple(f"{n}_{e}" for n in names for e in ("error", "order"))
                                 if study.error_bars else ())}
-    curves = {k: np.full(shape + (n_point,), np.nan) for k in _CURVES}
+    curves = {k: np.full(shape + (n_point,), np.nan) for k in CURVES}
     inverted = np.full(shape, np.nan)
     for i, (v, c) in results.items():
         for k, x in v.items():
@@ -395,12 +373,12 @@ def _build(plan: Plan, served: dict, failed: dict, history: str, material) -> xr
         for k, x in c.items():
             curves[k][i][:len(x)] = x
 
-    data = {k: (DIMS, values[k], _attrs(u, ln)) for k, (u, ln, _) in _PULL_OFF.items()}
+    data = {k: (DIMS, values[k], _attrs(u, ln)) for k, (u, ln, _) in PULL_OFF.items()}
     data["eta"] = (DIMS, values["eta"], _attrs(
         "1", "eta of eq. 3: |P*| / [gamma^4 R^4 (1 - nu^2) / (E t^2)]^(1/3)"))
     if study.error_bars:
         for k in names:
-            units = _PULL_OFF[k][0] if k in _PULL_OFF else "1"
+            units = PULL_OFF[k][0] if k in PULL_OFF else "1"
             data[f"{k}_error"] = (DIMS, values[f"{k}_error"], _attrs(
                 units, f"discretisation error estimate of {k} (the next two coarser meshes, "
                        "solver.error_bars; NaN: not available)"))
@@ -419,7 +397,7 @@ def _build(plan: Plan, served: dict, failed: dict, history: str, material) -> xr
     data["gamma_hat"] = (("C10", "gamma"), gamma_hat(gammas[None, :], C10s[:, None], R),
                          _attrs("1", "dimensionless work of adhesion gamma / (C10 R)"))
     if study.outputs.equilibrium_curves:
-        for k, (u, ln) in _CURVES.items():
+        for k, (u, ln) in CURVES.items():
             data[k] = ((*DIMS, "point"), curves[k], _attrs(u, ln))
 
     shells = (len(ax["t_over_R"]), len(ax["h_over_R"]))
@@ -491,11 +469,6 @@ def _build(plan: Plan, served: dict, failed: dict, history: str, material) -> xr
         if dim in sizes:
             coords[dim] = (dim, np.arange(sizes[dim], dtype=INDEX_DTYPE), _attrs("1", long_name))
     return xr.Dataset(data, coords=coords, attrs=_global_attrs(plan, history))
-
-
-# non-index coordinates: the curves' own variables and the dimensionless work of adhesion
-CURVE_COORDS = ("gamma_hat", "a_eq_mm", "loading_delta_mm", "relaxation_a_mm",
-                "relaxation_delta_mm")
 
 
 _INDEX_DIMS = {
@@ -676,63 +649,6 @@ def _global_attrs(plan: Plan, history: str) -> dict:
         **{f"solver_{k}": int(v) if isinstance(v, bool) else v for k, v in asdict(s).items()},
         relaxation_G_SAFETY=case.G_SAFETY,
     )
-
-
-# the study file's keys and the attributes that hold them (lists of numbers: arrays)
-_SCALAR_KEYS = {"name": "study_name", "description": "study_description", "R_mm": "R_mm",
-                "interface": "interface", "mesh": "mesh",
-                "delta_max_over_R": "delta_max_over_R", "error_bars": "error_bars",
-                "task_timeout_s": "task_timeout_s"}
-_GROUPS = {"base": "base_", "sweeps": "sweep_", "grid": "grid_"}
-_OUTPUTS = "output_"
-
-
-def study_attrs(study: dict) -> dict:
-    """Netcdf attributes holding a study dictionary (the study file's schema) as plain
-    numbers and strings: study_name, R_mm, base_C10_MPa, sweep_gamma_J_m2 (array), ...,
-    output_loading_curves (1 or 0)."""
-    out = {a: study[k] for k, a in _SCALAR_KEYS.items() if study.get(k) is not None}
-    if "error_bars" in out:
-        out["error_bars"] = int(out["error_bars"])   # netCDF has no booleans
-    for group, prefix in _GROUPS.items():
-        for f, v in study.get(group, {}).items():
-            out[prefix + f] = float(v) if group == "base" else np.asarray(v, dtype=float)
-    out.update({_OUTPUTS + k: int(v) for k, v in study.get("outputs", {}).items()})
-    return out
-
-
-def study_of(ds: xr.Dataset) -> dict:
-    """The study dictionary (the study file's schema) stored in the cube's attributes;
-    `study.config.validate` turns it back into a Study."""
-    a = ds.attrs
-    out = {k: a[name] for k, name in _SCALAR_KEYS.items() if name in a}
-    for k in ("R_mm", "delta_max_over_R", "task_timeout_s"):
-        if k in out:
-            out[k] = float(out[k])
-    if "error_bars" in out:
-        out["error_bars"] = bool(out["error_bars"])
-    for group, prefix in _GROUPS.items():
-        values = {f: a[prefix + f] for f in FACTORS + COEFFICIENTS + CAVITY_FACTORS
-                  if prefix + f in a}
-        if values:          # the study file leaves out an empty group
-            out[group] = ({f: float(v) for f, v in values.items()} if group == "base" else
-                          {f: [float(x) for x in np.atleast_1d(v)] for f, v in values.items()})
-    if "material_model" in a:
-        out["material"] = {"model": str(a["material_model"]),
-                           **{r: float(a["material_" + r]) for r in COEFFICIENTS
-                              if "material_" + r in a}}
-    if "cavity_mode" in a:
-        out["cavity"] = {"mode": str(a["cavity_mode"]),
-                         **{k: float(a["cavity_" + k]) for k in CAVITY_KEYS[1:]
-                            if "cavity_" + k in a}}
-    out["outputs"] = {f.name: bool(a[_OUTPUTS + f.name]) for f in fields(Outputs)
-                      if _OUTPUTS + f.name in a}
-    return {k: out[k] for k in KEYS if k in out}
-
-
-def base_attr(dim: str) -> str:
-    """Attribute name of the study's base value of a cube dimension (base_C10_MPa, ...)."""
-    return _GROUPS["base"] + FACTOR_OF_DIM[dim]
 
 
 def write(ds: xr.Dataset, path) -> None:

@@ -10,7 +10,7 @@ from dataclasses import asdict, dataclass
 import math
 
 from shell_adhesion.analysis.design_search import OBJECTIVES, Design, search
-from shell_adhesion.study.pull_off_map import pull_off_map
+from shell_adhesion.study.pull_off_map import DEFAULT_MAP, pull_off_map
 
 NAMES = ("P_star", "delta_star", "a_star")
 
@@ -60,7 +60,7 @@ def _num(v):
 
 
 def design(C10_MPa, gamma_J_m2, objective="pull_off", *, R_mm=None, b_mm=None,
-           t_mm=(0.0, math.inf), h_mm=(0.0, math.inf), map="default", confirm=True,
+           t_mm=(0.0, math.inf), h_mm=(0.0, math.inf), map=DEFAULT_MAP, confirm=True,
            progress=False) -> DesignResult:
     """The spherical-cap shell that maximises `objective` for a material and a size.
 
@@ -79,7 +79,7 @@ def design(C10_MPa, gamma_J_m2, objective="pull_off", *, R_mm=None, b_mm=None,
     t_mm, h_mm : (float, float)
         Bounds of the thickness and the depth [mm] (default: the map's).
     map : str or path
-        A shipped map (``default``, ``coarse``) or a map file.
+        The shipped map (``coarse``, the default) or a map file built by `map build`.
     confirm : bool
         Solve the optimum with one FE case on the map's mesh and interface.
     """

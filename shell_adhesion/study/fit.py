@@ -18,14 +18,15 @@ import time
 
 import numpy as np
 
-from shell_adhesion.solver import __version__
+from shell_adhesion import __version__
 from shell_adhesion.solver import fit as solver_fit
-from shell_adhesion.solver.geometry import (GAMMA_MAX, Cap, InputError, check_cap,
-                                            check_delta_max, delta_bound)
+from shell_adhesion.solver.geometry import (GAMMA_MAX, Cap, check_cap, check_delta_max,
+                                            delta_bound)
+from shell_adhesion.errors import InputError
 from shell_adhesion.solver.contact import INTERFACES
 from shell_adhesion.solver.request import Request, gamma_bucket, solve_request
 from shell_adhesion.solver.scaling import check_finite, check_R
-from shell_adhesion.solver.theory import youngs_modulus_MPa
+from shell_adhesion.theory import youngs_modulus_MPa
 
 MESHES = ("coarse", "default", "fine")
 HEADER = ("delta_mm", "P_N")

@@ -29,11 +29,17 @@ from shell_adhesion.solver.path import Settings, State
 from shell_adhesion.solver.pathset_dataset import LAYOUT
 
 
+# the package's modules outside solver/ that the solver imports (they shape its paths too)
+SOLVER_LEAVES = ("energy.py", "errors.py", "theory.py")
+
+
 @lru_cache(maxsize=1)
 def solver_source_sha256() -> str:
-    """sha256 over the solver package's Python sources (names and contents)."""
+    """sha256 over the solver package's Python sources and those of SOLVER_LEAVES (names
+    and contents)."""
+    folder = Path(solver.__file__).parent
     h = hashlib.sha256()
-    for p in sorted(Path(solver.__file__).parent.glob("*.py")):
+    for p in [*sorted(folder.glob("*.py")), *(folder.parent / n for n in SOLVER_LEAVES)]:
         h.update(p.name.encode() + b"\0" + p.read_bytes() + b"\0")
     return h.hexdigest()
 

@@ -15,7 +15,8 @@ import sys
 
 from shell_adhesion.analysis.design_search import OBJECTIVES
 from shell_adhesion.analysis.pull_off_map import MapError
-from shell_adhesion.solver import InputError
+from shell_adhesion.errors import InputError
+from shell_adhesion.study.pull_off_map import DEFAULT_MAP, SHIPPED
 
 NAMES = (("P_star_N", "P*"), ("delta_star_mm", "delta*"), ("a_star_mm", "a*"),
          ("P_dagger_N", "P_dagger"), ("delta_dagger_mm", "delta_dagger"),
@@ -80,8 +81,9 @@ def add_parsers(sub, one_dash):
 
 
 def _map_flag(parser):
-    parser.add_argument("--map", default="default",
-                        help="a shipped map (default: default mesh; coarse) or a map file (.nc)")
+    parser.add_argument("--map", default=DEFAULT_MAP,
+                        help=f"the shipped map ({', '.join(SHIPPED)}; default {DEFAULT_MAP}) "
+                             "or a map file (.nc) built by `map build`")
 
 
 def _positive(flag, text):

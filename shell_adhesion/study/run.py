@@ -1,5 +1,5 @@
 """Running a study: validate, plan, take what the catalogue holds, compute the rest on
-dask, write the results cube, then its tables and figures (study.products).
+dask, write the results cube, then its tables and figures (analysis.products).
 
 The loading of a shell is one task and each of its relaxation paths another; workers only
 compute.  This (client) process stores every finished relaxation path in the catalogue at
@@ -27,8 +27,9 @@ import uuid
 
 from shell_adhesion import solver
 from shell_adhesion.catalogue import Catalogue, default_dir
-from shell_adhesion.catalogue.atomic import clean_temporaries
+from shell_adhesion.atomic import clean_temporaries
 from shell_adhesion.catalogue.store import INDEX
+from shell_adhesion.cube import DIMS
 from shell_adhesion.solver.case import (cavity_lift, loading_views, pathset_of,
                                         relaxation_starts, relaxation_task, solve_loading,
                                         start_key, timing_stats)
@@ -44,7 +45,8 @@ from . import dataset, interrupt
 from .config import StudyError, load_study, validate
 from .keys import relaxation_part, solver_source_sha256
 from .plan import Plan, Shell, make_plan, served_key
-from .products import Products, kept_products, record_products, recorded_inputs, write_products
+from shell_adhesion.analysis.products import (Products, kept_products, record_products,
+                                              recorded_inputs, write_products)
 from .cost import estimate_s, shell_size
 from .progress import Progress, path_eta
 
@@ -119,7 +121,10 @@ def loading_task(t, h, interface, mesh, delta_max, settings, source_sha256=None,
                                _deadline(timeout_s, "the loading"), material, cavity=cavity,
                                stop_at_limit=True, uniform=uniform, a_stop=a_stop)
     starts = relaxation_starts(loading, d.capmesh)
-    light = replace(loading, states=tuple(replace(s, x=s.x[:0]) for s in loading.states))
+    # the driver needs the loading's numbers only: its fields stay here (a shell's states
+    # would otherwise be held by the driver for the whole run)
+    light = replace(loading, states=tuple(replace(s, x=s.x[:0], dx_ddelta=None)
+                                          for s in loading.states))
     info = dict(dofs=int(d.ndof), elements=int(d.capmesh.mesh.nelements),
                 loading_s=time.perf_counter() - t0)
     if cavity.closed:
@@ -182,6 +187,9 @@ def check_out(out) -> Path:
     return _writable_folder("out", out)
 
 
+LOW_LEVEL_LOG = 8      # messages dask keeps per comm (its default 1000; see _local_cluster)
+
+
 def _cpu_count() -> int:
     try:
         return len(os.sched_getaffinity(0))
@@ -192,17 +200,21 @@ def _cpu_count() -> int:
 def _connect_external(scheduler):
     """A Client of the scheduler at `scheduler` (an address or a scheduler file);
     RunInputError if none answers within CONNECT_TIMEOUT_S."""
+    import dask
     from distributed import Client
     try:
-        if Path(scheduler).is_file():
-            return Client(scheduler_file=str(scheduler), timeout=CONNECT_TIMEOUT_S)
-        return Client(scheduler, timeout=CONNECT_TIMEOUT_S)
+        # this side's message log bounded as in _local_cluster (the scheduler's is its own)
+        with dask.config.set({"distributed.admin.low-level-log-length": LOW_LEVEL_LOG}):
+            if Path(scheduler).is_file():
+                return Client(scheduler_file=str(scheduler), timeout=CONNECT_TIMEOUT_S)
+            return Client(scheduler, timeout=CONNECT_TIMEOUT_S)
     except (OSError, TimeoutError, ValueError, TypeError) as e:
         why = " ".join(str(e).split())[:120] or type(e).__name__
         raise RunInputError(
             "scheduler", f"{scheduler!r}: no dask scheduler answered within "
                          f"{CONNECT_TIMEOUT_S:g} s ({why}); it must be the address or "
                          "scheduler file of a running dask scheduler") from None
+
 
 
 @contextmanager
@@ -218,8 +230,13 @@ def _local_cluster(n_workers=None):
     # reaches the whole process group, and only this process must answer it
     main = threading.current_thread() is threading.main_thread()
     previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None
+    # dask keeps the last low-level-log-length messages of every comm for debugging, and
+    # with them each task's arguments (a relaxation's start state: its displacement
+    # fields): at 1000 the driver grew by about 10 MB per relaxation path on fitted meshes
+    # (a 4000-path study passed 20 GB); at LOW_LEVEL_LOG it holds a few states
+    logs = {"distributed.admin.low-level-log-length": LOW_LEVEL_LOG}
     try:
-        with dask.config.set({"distributed.nanny.pre-spawn-environ": environ}):
+        with dask.config.set({"distributed.nanny.pre-spawn-environ": environ, **logs}):
             cluster = LocalCluster(n_workers=n_workers or _cpu_count(), threads_per_worker=1,
                                    processes=True,
                                    # a free port: dask's HTTP server starts even
@@ -231,7 +248,8 @@ def _local_cluster(n_workers=None):
             signal.signal(signal.SIGINT, previous)
     client = None
     try:
-        client = Client(cluster)
+        with dask.config.set(logs):
+            client = Client(cluster)
         yield client
     finally:
         # bounded: after Ctrl-C a worker may be deep in a factorisation
@@ -343,6 +361,7 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
     def close(job):
         nonlocal shells_done
         job.done = True
+        job.starts, job.known = (), {}      # its states (displacement fields) are not needed
         shells_done += 1
         for g, (j, _) in list(owner.items()):
             if j is job:
@@ -780,7 +799,7 @@ def summary(outcome: Outcome, ds=None) -> str:
             if shown == 5:
                 lines.append(f"  ... {c['out of range'] - 5} more out of range")
                 break
-            pt = ", ".join(f"{d}={ds[d].values[i]:g}" for d, i in zip(dataset.DIMS, idx))
+            pt = ", ".join(f"{d}={ds[d].values[i]:g}" for d, i in zip(DIMS, idx))
             lines.append(f"  out of range at {pt}: {ds['reason'].values[idx]}")
             shown += 1
     for d in outcome.discarded:

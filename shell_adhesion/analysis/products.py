@@ -3,11 +3,11 @@ all read from the results netCDF (never from the solver).
 
     results/<name>.nc               the cube (study.dataset)
     results/<name>_tables/          cases.{csv,md,tex}, paper.{csv,md,tex}, analysis.txt
-    results/<name>_figures/         fig2 ... fig6b as PNG and PDF (study.figures)
+    results/<name>_figures/         fig2 ... fig6b as PNG (analysis.figures; PDF on request)
     results/<name>_products.json    digests of the cube's content and file, and the files
                                     written from it
 
-Every file is written atomically (catalogue.atomic).  A run whose cube has the content of
+Every file is written atomically (shell_adhesion.atomic).  A run whose cube has the content of
 the one already there, with every file the manifest lists present, rewrites nothing.
 """
 from dataclasses import dataclass, field
@@ -18,7 +18,12 @@ import time
 
 import xarray as xr
 
-from shell_adhesion.catalogue.atomic import write_text_atomic
+from shell_adhesion.atomic import write_text_atomic
+
+from .figures import RUN_FORMATS, write_figures
+from .slices import base_cavity, base_material
+from .summary import summary
+from .tables import FORMATS, cases_table, comparison_table, render
 
 
 def tables_dir(results_nc) -> Path:
@@ -100,8 +105,6 @@ def kept_products(results_nc, digest: str, key: str = "content_sha256"):
 
 def write_tables(ds: xr.Dataset, out_dir) -> list:
     """The cases and paper tables in every format, and the analysis summary."""
-    from .analysis import summary
-    from .tables import FORMATS, cases_table, comparison_table, render
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     written = []
@@ -116,40 +119,9 @@ def write_tables(ds: xr.Dataset, out_dir) -> list:
     return written
 
 
-def base_material(ds: xr.Dataset) -> xr.Dataset:
-    """The cube at the study's base solid: a swept material ratio (a dimension such as
-    C01_over_C10) at its value in the material block, else its first value."""
-    from .dataset import DIMS
-    at = {}
-    for d in ds["status"].dims:
-        if d not in DIMS:
-            v = ds.attrs.get(f"material_{d}")
-            at[d] = v if v is not None and v in ds[d].values else ds[d].values[0]
-    return ds.sel(at) if at else ds
-
-
-def base_cavity(ds: xr.Dataset) -> xr.Dataset:
-    """A closed-cavity cube as the figures read it: a swept p_kPa at its base value (else
-    its first), and the per-shell variables that gained C10 (attribute cavity_per_C10)
-    at the base C10 (else the first)."""
-    if "cavity_per_C10" not in ds.attrs:
-        return ds
-    if "p_kPa" in ds.dims:
-        p = ds.attrs.get("cavity_p_kPa")
-        ds = ds.sel(p_kPa=p if p is not None and p in ds["p_kPa"].values
-                    else ds["p_kPa"].values[0])
-    C10 = ds.attrs.get("base_C10_MPa")
-    C10 = C10 if C10 is not None and C10 in ds["C10"].values else ds["C10"].values[0]
-    names = [n for n in str(ds.attrs["cavity_per_C10"]).split() if n in ds.variables]
-    at = {n: ds[n].sel(C10=C10, drop=True).variable for n in names}
-    coords = {n: v for n, v in at.items() if n in ds.coords}
-    ds = ds.drop_vars(names).assign({n: v for n, v in at.items() if n not in coords})
-    return ds.assign_coords(coords)
-
-
-def write_products(results_nc, formats=("png", "pdf")) -> Products:
-    """Tables and figures of the cube at `results_nc`, beside it."""
-    from .figures import write_figures
+def write_products(results_nc, formats=RUN_FORMATS) -> Products:
+    """Tables and figures of the cube at `results_nc`, beside it (figures as PNG; other
+    formats on request, e.g. formats=("png", "pdf"))."""
     path = Path(results_nc)
     p = Products()
     t0 = time.perf_counter()

@@ -15,8 +15,11 @@ import numbers
 from tabulate import tabulate
 import xarray as xr
 
-from .analysis import ok_cases, paper_comparison, R_mm
-from .config import IN_MPA, RATIOS
+from shell_adhesion.cube import IN_MPA
+
+from .paper import paper_comparison
+from .results import R_mm, ok_cases
+from .slices import base_material, material_label
 
 DIGITS = 4
 FORMATS = ("csv", "md", "tex")
@@ -80,12 +83,11 @@ def cases_table(ds: xr.Dataset) -> Table:
 
 
 def comparison_table(ds: xr.Dataset) -> Table:
-    """Our numbers beside the paper's (`study.analysis.paper_comparison`); the quantities
+    """Our numbers beside the paper's (`analysis.paper.paper_comparison`); the quantities
     the cube cannot answer are listed in the notes.  A cube that sweeps a material ratio is
-    compared at its base solid (`products.base_material`); a solid other than the paper's
+    compared at its base solid (`slices.base_material`); a solid other than the paper's
     incompressible neo-Hookean one is named in the title and a note (the differences are
     then the material's effect, not an error)."""
-    from .products import base_material
     ds = base_material(ds)
     cmp = paper_comparison(ds)
     columns = ("quantity", "paper", "ours", "unit", "difference [%]", "note")
@@ -99,26 +101,6 @@ def comparison_table(ds: xr.Dataset) -> Table:
         notes = (f"The paper's values are for the incompressible neo-Hookean solid, ours for "
                  f"{label}: a difference is the material's effect, not an error.",) + notes
     return Table(title, columns, rows, notes)
-
-
-def material_label(ds: xr.Dataset) -> tuple:
-    """(text, paper_solid): the solid of a cube, or of its slice at one value of each swept
-    ratio, e.g. "mooney_rivlin (C01_over_C10 = 0.2)"; paper_solid is True for the
-    incompressible neo-Hookean solid (any model whose coefficients reduce to it)."""
-    a = ds.attrs
-    model = a.get("material_model", "neo_hooke")
-    values = {k.removeprefix("material_"): float(v) for k, v in a.items()
-              if k.startswith("material_") and k != "material_model"}
-    swept = {d: float(ds[d]) for d in (*RATIOS, *IN_MPA) if d in ds.coords and ds[d].ndim == 0}
-    values.update(swept)
-    if swept or "material" not in a:
-        text = model + (f" ({', '.join(f'{k} = {v:g}' for k, v in values.items())})"
-                        if values else "")
-    else:
-        text = a["material"]
-    reduces = model in ("neo_hooke", "mooney_rivlin", "yeoh") and not any(
-        v for k, v in values.items() if k not in ("C10_MPa", "Jm"))
-    return text, reduces
 
 
 def _missing(x) -> bool:

@@ -1,6 +1,6 @@
 """The `shell-adhesion` command line.
 
-    shell-adhesion case --R 20 --t 3 --h 20 --C10 0.3 [--gamma 30 ...] [--json]
+    shell-adhesion case --R 20 --t 3 --h 20 --C10 0.3 [--gamma 30 ...] [--json [--curves]]
         [--material neo-hookean|mooney-rivlin|yeoh|gent] [--C01 C] [--C20 C] [--C30 C]
         [--Jm J] [--D1 D]
     shell-adhesion fit --R 20 --t 3 --h 20 --curve test.csv [--pull-off-N P] [--json]
@@ -19,7 +19,7 @@
 
 Bad input prints one line naming the flag, the value and the rule, and exits with 2,
 before any computation and without creating anything.  The rules are the solver's
-(`study.case.case_input` for `case`, `study.config` for study files).  `case` has no
+(`study.case_input.case_input` for `case`, `study.config` for study files).  `case` has no
 `-h`: the depth is `--h`, help is `--help`.  A mistyped flag gets the nearest one
 ("did you mean --gamma?").
 """
@@ -30,16 +30,16 @@ from pathlib import Path
 import sys
 import time
 
-from shell_adhesion import examples
-from shell_adhesion.solver import INTERFACES, ConvergenceError, InputError, __version__
-from shell_adhesion.solver.path import MaterialLimitError
-
-from . import case as case_api
-from . import map_commands
+from shell_adhesion import __version__, examples
+from shell_adhesion.errors import ConvergenceError, InputError, MaterialLimitError
+from shell_adhesion.solver import INTERFACES
+from shell_adhesion.study import case as case_api
+from shell_adhesion.study import map_commands
+from shell_adhesion.study.case_input import MESHES, case_input
 
 FIGURE_FORMATS = ("png", "pdf", "svg")
 HARD_EXIT_S = 45.0      # a run still ending this long after Ctrl-C is ended at once
-# the flag of each input of `case` (study.case.case_input names the fields this way)
+# the flag of each input of `case` (study.case_input.case_input names the fields this way)
 CASE_FLAGS = dict(R_mm="--R", t_mm="--t", h_mm="--h", C10_MPa="--C10",
                   gamma_J_m2="--gamma", delta_max_mm="--delta-max", interface="--interface",
                   mesh="--mesh", material="--material", C01_MPa="--C01", C20_MPa="--C20",
@@ -104,7 +104,7 @@ def _run_case(ns):
     solid.update({arg: _number(CASE_FLAGS[arg], getattr(ns, arg), unit)
                   for arg, unit in CAVITY_FLAGS if getattr(ns, arg) is not None},
                  cavity=ns.cavity)
-    inp = case_api.case_input(_number("--R", ns.R, "mm"), _number("--t", ns.t, "mm"),
+    inp = case_input(_number("--R", ns.R, "mm"), _number("--t", ns.t, "mm"),
                      _number("--h", ns.h, "mm"), _number("--C10", ns.C10, "MPa"),
                      [_number("--gamma", g, "J/m^2") for g in ns.gamma or []],
                      None if ns.delta_max is None else _number("--delta-max", ns.delta_max, "mm"),
@@ -117,9 +117,9 @@ def _run_case(ns):
     except MaterialLimitError as e:     # the request cannot be met with this Jm: exit 2
         raise InputError(e.text(inp.R_mm, "mm", "--delta-max", "--Jm")) from None
     if ns.json:
-        print(result.to_json())
+        print(result.to_json(curves=ns.curves))
     else:
-        _print_case(result.to_dict())
+        _print_case(result.to_dict(curves=True))
     return 1 if result.refused else 0       # every answer is printed; a refusal fails
 
 
@@ -129,7 +129,7 @@ FIT_FLAGS = dict(R_mm="--R", t_mm="--t", h_mm="--h", curve="--curve",
 
 def _run_fit(ns):
     """`fit`: C10 and gamma of one shell from a measured curve (study.fit)."""
-    from . import fit as fit_api
+    from shell_adhesion.study import fit as fit_api
 
     if ns.plot is not None:
         _check_figure_path(ns.plot)
@@ -275,9 +275,10 @@ def _run_study(ns):
     """`run`: the study through study.run.run_study (one orchestration for API and CLI)."""
     from shell_adhesion.catalogue import default_dir
 
-    from . import interrupt
-    from .config import StudyError
-    from .run import Interrupted, RunInputError, SchedulerLost, dry_run, exit_code, run_study
+    from shell_adhesion.study import interrupt
+    from shell_adhesion.study.config import StudyError
+    from shell_adhesion.study.run import (Interrupted, RunInputError, SchedulerLost, dry_run,
+                                          exit_code, run_study)
 
     try:
         if ns.dry_run:
@@ -309,10 +310,10 @@ def _run_study(ns):
 
 
 def _run_tables(ns):
-    from .analysis import open_results
-    from shell_adhesion.catalogue.atomic import write_text_atomic
+    from shell_adhesion.analysis import open_results
+    from shell_adhesion.atomic import write_text_atomic
 
-    from .tables import cases_table, comparison_table, render
+    from shell_adhesion.analysis.tables import cases_table, comparison_table, render
 
     ds = open_results(ns.results)
     makers = {"cases": [cases_table], "paper": [comparison_table],
@@ -340,9 +341,9 @@ _dpi = _integer(20, 1200)
 
 
 def _run_plot(ns):
-    from .analysis import open_results
-    from .figures import write_figures
-    from .products import figures_dir
+    from shell_adhesion.analysis import open_results
+    from shell_adhesion.analysis.figures import write_figures
+    from shell_adhesion.analysis.products import figures_dir
 
     formats = tuple(f.strip() for f in ns.format.split(",") if f.strip())
     bad = [f for f in formats if f not in FIGURE_FORMATS]
@@ -368,7 +369,7 @@ def _run_example(ns):
 
 
 def _run_analyse(ns):
-    from .analysis import open_results, summary
+    from shell_adhesion.analysis import open_results, summary
 
     print(summary(open_results(ns.results)))
     return 0
@@ -404,7 +405,7 @@ def _parser():
                       help="adhesion energy gamma [J/m^2]; repeat for several (one FE run serves all)")
     case.add_argument("--interface", choices=INTERFACES, default="no_slip",
                       help="interface model (default no_slip, the paper's cohesive contact)")
-    case.add_argument("--mesh", choices=case_api.MESHES, default="default", help="mesh density")
+    case.add_argument("--mesh", choices=MESHES, default="default", help="mesh density")
     case.add_argument("--cavity", default="open", metavar="MODE",
                       help="open (default), pressure (prescribed gauge --p-kPa) or sealed "
                       "(trapped gas): a rigid lid closes the rim")
@@ -417,6 +418,8 @@ def _parser():
     case.add_argument("--gas-exponent", dest="gas_exponent", default=None,
                       help="sealed gas p V^n = const: n >= 1 (default 1 isothermal, 1.4 adiabatic)")
     case.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    case.add_argument("--curves", action="store_true",
+                      help="with --json: the loading, relaxation and equilibrium curves too")
     case.add_argument("--no-error-bars", dest="no_error_bars", action="store_true",
                       help="skip the second, coarser mesh that gives every number its "
                            "discretisation error bar (about 25 %% faster)")
@@ -435,7 +438,7 @@ def _parser():
                      help="a measured pull-off force [N]: gamma from P* alone")
     fit.add_argument("--interface", choices=INTERFACES, default="no_slip",
                      help="interface model (default no_slip)")
-    fit.add_argument("--mesh", choices=case_api.MESHES, default="default", help="mesh density")
+    fit.add_argument("--mesh", choices=MESHES, default="default", help="mesh density")
     fit.add_argument("--json", action="store_true", help="print JSON instead of text")
     fit.add_argument("--plot", default=None, metavar="FILE",
                      help="write a figure of data, fitted curves and residuals (png, pdf, svg)")

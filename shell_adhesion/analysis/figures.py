@@ -9,13 +9,17 @@ gamma J/m^2).  Units: lengths mm, forces N, energies mJ, stresses MPa; P > 0
 compression, delta > 0 approach.  A cube that sweeps a material ratio (a dimension such as
 C01_over_C10) draws one curve per material value, labelled, in the sweep figures (Fig. 6)
 and in `fig_materials` (loading curves and pull-off against the ratio); the shell-level
-figures (Figs. 2 to 5) are drawn for its base solid (`products.base_material`).  Fig. 5 rebuilds U_E(a, delta) from the stored
-relaxation curves with `solver.energy` (interpolation only).
+figures (Figs. 2 to 5) are drawn for its base solid (`slices.base_material`).  Fig. 5 rebuilds U_E(a, delta) from the stored
+relaxation curves with `shell_adhesion.energy` (interpolation only).
 
     shell-adhesion plot results/paper.nc --out results/figures
 """
+from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
 import itertools
+import multiprocessing as mp
 from pathlib import Path
+import threading
 
 import numpy as np
 from matplotlib import colormaps
@@ -24,13 +28,15 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Rectangle
 from matplotlib.tri import Triangulation
 
-from shell_adhesion.catalogue.atomic import atomic_path
-from shell_adhesion.solver.energy import (energy_surface, total_energy_fixed_grips,
-                           total_energy_fixed_load)
-from shell_adhesion.solver.theory import jkr_P_star_N, shell_law_scale_N
+from shell_adhesion.atomic import atomic_path
+from shell_adhesion.cube import DIMS
+from shell_adhesion.energy import (energy_surface, total_energy_fixed_grips,
+                                   total_energy_fixed_load)
+from shell_adhesion.theory import jkr_P_star_N, shell_law_scale_N
 
-from .analysis import along, base_point, eta_fit
-from .dataset import DIMS
+from .fits import eta_fit
+from .results import along, base_point
+from .slices import base_material, material_label
 
 SWEEPS = (("C10", "C10 [MPa]"), ("t_over_R", "t/R [1]"), ("h_over_R", "h/R [1]"),
           ("gamma", "gamma [J/m$^2$]"))
@@ -126,9 +132,8 @@ def _ratios_label(at: dict) -> str:
 
 
 def _base_and_others(ds):
-    """(label, cube) of the base solid (`products.base_material`), and [(label, cube)] of
+    """(label, cube) of the base solid (`slices.base_material`), and [(label, cube)] of
     the other swept solids; (None, ds, []) for a cube that sweeps no ratio."""
-    from .products import base_material
     solids = materials(ds)
     if solids[0][0] is None:
         return None, ds, []
@@ -144,7 +149,6 @@ _RATIO_LABELS = {"C01_over_C10": "C01/C10", "C20_over_C10": "C20/C10",
 
 
 def _title(ds, p, with_gamma=True):
-    from .tables import material_label
     R = float(ds["R"])
     s = (f"R = {R:g} mm, t = {p['t_over_R'] * R:g} mm, h = {p['h_over_R'] * R:g} mm, "
          f"C10 = {p['C10']:g} MPa")
@@ -610,33 +614,81 @@ MATERIAL_FIGURES = {"fig7_materials": fig_materials}   # a cube that sweeps a ma
 SHELL_FIGURES = ("fig2_von_mises", "fig3_profiles", "fig4_load_relaxation", "fig5_energy")
 
 
+RUN_FORMATS = ("png",)      # what `shell-adhesion run` draws; PDF on request (`plot --format`)
+PROCESSES = 2               # figures drawn side by side (forked, so nothing is imported again)
+
+
 def _save(fig: Figure, path: Path, dpi):
     """Write atomically (a reader never sees half a file)."""
     with atomic_path(path) as tmp:
         fig.savefig(tmp, format=path.suffix[1:], dpi=dpi)
 
 
-def write_figures(ds, out_dir, formats=("png", "pdf"), dpi=150) -> tuple:
+def _draw(name, ds, out: Path, formats, dpi) -> tuple:
+    """Figure `name` of `ds` in each format: (written paths, None) or ([], why skipped)."""
+    draw = {**FIGURES, **MATERIAL_FIGURES}[name]
+    try:
+        fig = figure_of(draw(ds))
+    except (MissingData, ValueError, KeyError) as e:
+        return [], f"{type(e).__name__}: {e}"
+    written = []
+    for fmt in formats:
+        path = out / f"{name}.{fmt}"
+        _save(fig, path, dpi)
+        written.append(path)
+        fig.set_layout_engine("none")   # laid out once: the other formats reuse it
+    return written, None
+
+
+_JOBS = []      # (name, cube) of the figures being drawn, inherited by forked workers
+
+
+def _draw_job(k, out, formats, dpi):
+    name, ds = _JOBS[k]
+    return _draw(name, ds, out, formats, dpi)
+
+
+def _forked_pool(n):
+    """A pool of `n` forked processes, or None where forking is not safe: another thread
+    (dask's, say) could hold a lock the child would wait for forever, or no fork at all."""
+    if n < 2 or threading.active_count() > 1 or "fork" not in mp.get_all_start_methods():
+        return None
+    return ProcessPoolExecutor(n, mp_context=mp.get_context("fork"))
+
+
+def _draw_all(jobs, out, formats, dpi, processes) -> list:
+    """_draw of every (name, cube) in `jobs`, in order; side by side in forked processes
+    when it is safe, else (or if a worker dies) one after the other."""
+    pool = _forked_pool(min(processes, len(jobs)))
+    if pool is None:
+        return [_draw(name, ds, out, formats, dpi) for name, ds in jobs]
+    _JOBS[:] = jobs
+    try:
+        with pool:
+            futures = [pool.submit(_draw_job, k, out, formats, dpi) for k in range(len(jobs))]
+            return [f.result() for f in futures]
+    except BrokenProcessPool:
+        return [_draw(name, ds, out, formats, dpi) for name, ds in jobs]
+    finally:
+        _JOBS.clear()
+
+
+def write_figures(ds, out_dir, formats=("png", "pdf"), dpi=150, processes=PROCESSES) -> tuple:
     """Draw every figure the cube has data for into `out_dir`: (written paths,
     {figure: reason} for those skipped).  Raster formats at `dpi` (the default, used by
     `shell-adhesion run`, is above MIN_DPI, the least for a figure meant to be read).
     The shell-level figures of a cube that sweeps a material ratio are drawn for its base
-    solid, and MATERIAL_FIGURES only for such a cube."""
-    from .products import base_material
+    solid, and MATERIAL_FIGURES only for such a cube.  Up to `processes` figures are drawn
+    at once (forked workers; 1: in this process)."""
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    written, skipped = [], {}
     swept = any(d not in DIMS for d in ds["status"].dims)
     base = base_material(ds) if swept else ds
-    for name, draw in {**FIGURES, **(MATERIAL_FIGURES if swept else {})}.items():
-        try:
-            fig = figure_of(draw(base if name in SHELL_FIGURES else ds))
-        except (MissingData, ValueError, KeyError) as e:
-            skipped[name] = f"{type(e).__name__}: {e}"
-            continue
-        for fmt in formats:
-            path = out / f"{name}.{fmt}"
-            _save(fig, path, dpi)
-            written.append(path)
-            fig.set_layout_engine("none")   # laid out once: the other formats reuse it
+    names = [*FIGURES, *(MATERIAL_FIGURES if swept else ())]
+    jobs = [(name, base if name in SHELL_FIGURES else ds) for name in names]
+    written, skipped = [], {}
+    for name, (paths, why) in zip(names, _draw_all(jobs, out, formats, dpi, processes)):
+        written += paths
+        if why is not None:
+            skipped[name] = why
     return written, skipped

@@ -1,0 +1,40 @@
+"""A run's driver does not keep what it sent to the workers.
+
+dask logs the last messages of each comm (1000 by default), and with them every task's
+arguments: each relaxation task carries its start state (the displacement fields), so the
+driver of a long study grew with every path.  After the paths of a study are computed the
+driver holds only the few states of the bounded logs."""
+import gc
+
+import numpy as np
+
+from shell_adhesion.solver.path import State
+from shell_adhesion.study import run as run_module
+
+STUDY = dict(name="memory", R_mm=20, mesh="coarse", error_bars=False,
+             base=dict(C10_MPa=1.0, t_over_R=0.1, h_over_R=1.0, gamma_J_m2=600))
+
+
+def _states_with_fields():
+    gc.collect()
+    return sum(1 for o in gc.get_objects()
+               if isinstance(o, State) and o.x is not None and np.size(o.x) > 0)
+
+
+def test_the_driver_drops_the_start_states_it_sent(tmp_path, monkeypatch):
+    held = {}
+    compute = run_module.compute
+
+    def counting(*args, **kwargs):
+        result = compute(*args, **kwargs)
+        held["states"] = _states_with_fields()
+        return result
+
+    monkeypatch.setattr(run_module, "compute", counting)
+    outcome = run_module.execute(STUDY, out=tmp_path / "out", catalogue=tmp_path / "cat",
+                                 progress=False, workers=2)
+    assert outcome.exit_code == 0
+    paths = outcome.relaxations_computed
+    assert paths > 6 * run_module.LOW_LEVEL_LOG       # enough paths to tell
+    # the logs of the client's comm and the two workers' hold at most LOW_LEVEL_LOG each
+    assert held["states"] <= 3 * run_module.LOW_LEVEL_LOG, (held["states"], paths)

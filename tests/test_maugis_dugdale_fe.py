@@ -7,7 +7,11 @@ Measured (coarse mesh, 4454 dofs, ramp 0.5 delta_c; benchmarks/maugis_dugdale_fe
 Pbar* -1.615 against -1.6007 at lambda = 1 (+0.9 %, 40 s), about -1.814 against -1.8156 at
 lambda = 0.3 (-0.1 %, 11 s); held to the issue's 2 %.  a* and delta* are not yet within
 the issue's 3 % on this mesh (A* 0.84 against 0.90 at lambda = 1), so they are not held.
-lambda = 3 does not pass the jump-in yet (the path turns back there).
+lambda = 3 is not held: the path passes the jump-in fold, then follows the branch behind
+it (delta falling, a growing: the JKR-like unstable branch) below delta0 = -2 reach, where
+trace's "turned back below delta0" stop ends it (a false stop: the shell is in range).
+Without that stop (tried: only when out of range) the path ran 1586 states (1053 s on a
+loaded machine) and still left the range before delta_max: not yet followed.
 """
 import math
 

@@ -25,11 +25,13 @@ import time
 
 import numpy as np
 
+from shell_adhesion.errors import ConvergenceError
+
 from .cohesive import Interface
 from .contact import constraints, gaps, rim_load
 from .forms import strain_energy, tangent
-from .linear import LinearSolver, SingularTangent, Timer
-from shell_adhesion.errors import ConvergenceError
+from .linear import Timer
+from .path import Settings, _Problem
 
 
 @dataclass(frozen=True)
@@ -57,6 +59,7 @@ class ArcState:
     U: float                   # strain energy / (C10 R^3)
     Pi: float                  # interface energy / (C10 R^3)
     iterations: int = 0        # Newton iterations of the corrector that found it
+    slope: tuple = (math.nan, math.nan)   # (d delta, dP) along the path's tangent there
     x: np.ndarray = field(default=None, repr=False)
 
 
@@ -79,7 +82,9 @@ class _Continuation:
     def __init__(self, iface: Interface, interface: str, s: ArcSettings):
         self.iface, self.d, self.interface, self.s = iface, iface.d, interface, s
         self.timer = Timer()
-        self.linear = LinearSolver(self.d.csr_indptr, self.d.csr_indices, True, self.timer)
+        # the loading solver's factorisation of the free block and d(residual)/d(delta)
+        problem = _Problem(self.d, interface, Settings(), self.timer)
+        self.factor, self.solve = problem.factor, problem.solve
         cm = self.d.capmesh
         on_rim = np.isin(cm.outer, cm.rim)
         self.candidates = np.flatnonzero(~on_rim)           # outer nodes that may touch
@@ -92,21 +97,6 @@ class _Continuation:
         K, r = self.iface.add(x, *tangent(self.d, x))
         self.timer.assembly += time.perf_counter() - t0
         return K, r
-
-    def factor(self, K, c):
-        try:
-            lu = self.linear.factor(K, c)
-        except SingularTangent as err:
-            raise ConvergenceError(f"singular tangent ({err})") from None
-        e = np.zeros(self.d.ndof)
-        e[c.rimz] = 1.0
-        return lu, -(K @ e)[c.free]
-
-    def solve(self, lu, b):
-        try:
-            return lu.solve(b)
-        except SingularTangent as err:
-            raise ConvergenceError(f"singular tangent ({err})") from None
 
     def dot(self, u, du, v, dv):
         return float(np.dot(u * self.weight, v)) + du * dv
@@ -176,7 +166,7 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
     K, r = cn.linearise(x)
     delta = delta0
     t = cn.tangent_at(K, c)
-    states = [_state(cn, x, delta, r, 0)]
+    states = [_state(cn, x, delta, K, r, t, 0)]
     ds = 0.1 * law.delta_c
     turn = -1
     ended_by = f"step limit: {s.max_steps} states"
@@ -200,7 +190,7 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
                 break
             continue
         x, delta = x_new, d_new
-        states.append(_state(cn, x, delta, r, it))
+        states.append(_state(cn, x, delta, K, r, t, it))
         if progress is not None:
             progress(states[-1])
         if it <= 4:
@@ -217,11 +207,48 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
     return ArcPath(tuple(states), turn, ended_by, cn.timer)
 
 
-def _state(cn, x, delta, r, it) -> ArcState:
+def _state(cn, x, delta, K, r, t, it) -> ArcState:
     d, iface = cn.d, cn.iface
     a = contact_radius(iface, x)
+    # the tangent t = (dx, d delta) moves the internal forces by K dx
     return ArcState(delta, rim_load(d, r), a, cohesive_radius(iface, x, a),
-                    strain_energy(d, x), iface.energy(x), it, x.copy())
+                    strain_energy(d, x), iface.energy(x), it,
+                    (float(t[1]), rim_load(d, K @ t[0])), x.copy())
+
+
+def work(path: ArcPath) -> np.ndarray:
+    """The work of P from the first state to each state, the integral of P d delta
+    (units of C10 R^3; P > 0 compression, delta > 0 approach: the work done on the shell).
+
+    Each step is a cubic Hermite curve in the (delta, P) plane (scaled by the ranges of
+    delta and P) through its two states with their path tangents (`ArcState.slope`), its
+    parameter the chord length: exact for a cubic arc, and it passes the folds, where P is
+    not a function of delta."""
+    D, P = path.array("delta"), path.array("P")
+    scale = np.array([np.ptp(D), np.ptp(P)])
+    if len(D) < 2 or not np.all(scale > 0):
+        return np.zeros(len(D))
+    y = np.stack([D, P], 1) / scale
+    t = np.array([s.slope for s in path.states]) / scale
+    t /= np.linalg.norm(t, axis=1)[:, None]
+    xi, wq = np.polynomial.legendre.leggauss(3)      # exact: P(u) dD/du is of degree 5
+    u = 0.5 * (xi + 1)
+    h = np.stack([2 * u ** 3 - 3 * u ** 2 + 1, u ** 3 - 2 * u ** 2 + u,
+                  3 * u ** 2 - 2 * u ** 3, u ** 3 - u ** 2])
+    dh = np.stack([6 * u ** 2 - 6 * u, 3 * u ** 2 - 4 * u + 1,
+                   6 * u - 6 * u ** 2, 3 * u ** 2 - 2 * u])
+    W = np.zeros(len(D))
+    for k in range(len(D) - 1):
+        chord = y[k + 1] - y[k]
+        L = float(np.hypot(*chord))
+        # each tangent taken along the step (the turn at delta_max reverses the path)
+        t0 = t[k] * np.sign(t[k] @ chord)
+        t1 = t[k + 1] * np.sign(t[k + 1] @ chord)
+        ctrl = np.stack([y[k], L * t0, y[k + 1], L * t1])      # (4, 2)
+        Pk = h.T @ ctrl[:, 1]
+        dD = dh.T @ ctrl[:, 0]
+        W[k + 1] = W[k] + 0.5 * float(np.sum(wq * Pk * dD))
+    return W * scale[0] * scale[1]
 
 
 def _crossing(iface: Interface, x, level: float, a: float = 0.0) -> float:

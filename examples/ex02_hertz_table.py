@@ -1,9 +1,16 @@
-r"""Hertz check on a solid hemisphere (R = 20 mm, C10 = 0.3 MPa): P/P_Hertz along loading.
+r"""Hertz check on a solid hemisphere
+=================================
+
+Hertz check on a solid hemisphere (R = 20 mm, C10 = 0.3 MPa): P/P_Hertz along loading.
 
 P_Hertz = (4/3) E* sqrt(R) delta^1.5 with E* = 8 C10.  The FE body is finite with its top
 face held, so P/P_Hertz grows like 1 + 0.7 a/R (an independent solution); a/sqrt(R delta)
 shows how well the mesh locates the contact edge.
+
+    python examples/ex02_hertz_table.py [coarse|default|fine]
 """
+import sys
+
 import numpy as np
 
 from shell_adhesion.solver.case import solve_loading
@@ -20,7 +27,8 @@ def table(mesh="default", interface="no_slip", delta_max=0.0026):
 
 
 if __name__ == "__main__":
+    mesh = sys.argv[1] if len(sys.argv) > 1 else "coarse"
     for interface in ("no_slip", "frictionless"):
-        print(f"{interface}:  a/R   P/P_Hertz  1+0.7a/R  a/sqrt(R delta)")
-        for a, delta, ratio, a_ratio in table(interface=interface)[1::2]:
+        print(f"{interface} ({mesh} mesh):  a/R   P/P_Hertz  1+0.7a/R  a/sqrt(R delta)")
+        for a, delta, ratio, a_ratio in table(mesh, interface)[1::2]:
             print(f"        {a:.4f}  {ratio:.4f}     {1 + 0.7 * a:.4f}    {a_ratio:.4f}")

@@ -1,4 +1,7 @@
-r"""Mooney-Rivlin shells: pull-off against C01/C10 for the base shell, from a study cube.
+r"""Mooney-Rivlin shells: a study in Python
+=======================================
+
+Mooney-Rivlin shells: pull-off against C01/C10 for the base shell, from a study cube.
 
 Runs examples/study_mooney_rivlin.yaml with `shell_adhesion.run_study` (R = 20 mm, t = 3 mm,
 h = 20 mm, C10 = 0.3 MPa, gamma = 30 J/m^2, no-slip; C01/C10 from 0, neo-Hookean, to 0.5;
@@ -21,8 +24,9 @@ import numpy as np
 import yaml
 
 from shell_adhesion import run_study
+from shell_adhesion.examples import mooney_rivlin_study
 
-STUDY = Path(__file__).parent / "study_mooney_rivlin.yaml"
+STUDY = mooney_rivlin_study()       # the same as examples/study_mooney_rivlin.yaml
 FIGURE = "mooney_rivlin.png"        # written into the folder --out
 
 
@@ -75,10 +79,13 @@ def figure(rows, path, title=""):
 
 def arguments(argv=None):
     """The command line: --out (folder of the figure and the cube), --mesh, --delta-max-over-R."""
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = argparse.ArgumentParser(description="Pull-off of the base shell against C01/C10 "
+                                 "(Mooney-Rivlin)")
     ap.add_argument("--out", type=Path, default=Path("."),
                     help=f"folder for {FIGURE} and results/ (default: the working folder)")
     ap.add_argument("--mesh", default="coarse")
+    ap.add_argument("--catalogue", type=Path, default=None,
+                    help="catalogue folder (default: catalogue-data in the working folder)")
     ap.add_argument("--delta-max-over-R", type=float, default=0.15)
     return ap.parse_args(argv)
 
@@ -88,7 +95,7 @@ def main(argv=None):
     print(f"solving {STUDY.name} ({ns.mesh} mesh, delta_max = {ns.delta_max_over_R:g} R); "
           "progress on stderr", flush=True)
     rows = sweep(mesh=ns.mesh, delta_max_over_R=ns.delta_max_over_R, out=ns.out / "results",
-                 progress=True)
+                 catalogue=ns.catalogue, progress=True)
     print("C01/C10   P* [N]  delta* [mm]  delta_dagger [mm]  P_dagger [N]   eta")
     for q, P, d, dd, Pd, eta in rows:
         print(f"{q:7.2f} {P:8.4f} {d:12.4f} {dd:18.4f} {Pd:13.4f} {eta:6.2f}")

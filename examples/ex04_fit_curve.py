@@ -1,4 +1,7 @@
-r"""Fit C10 and gamma back from a synthetic test, and what a half-space JKR fit makes of it.
+r"""Fitting C10 and gamma to a measured curve
+=========================================
+
+Fit C10 and gamma back from a synthetic test, and what a half-space JKR fit makes of it.
 
 A displacement-controlled test of the shell R = 20 mm, t = 3 mm, h = 20 mm (t/R = 0.15,
 h/R = 1) with C10 = 0.25 MPa and gamma = 25 J/m^2 (gamma / (C10 R) = 0.005) is made by the

@@ -1,9 +1,12 @@
-r"""Design a suction-cup-like shell: the (t, h) that sticks best, from the pull-off map.
+r"""Design on the pull-off map
+==========================
+
+Design a suction-cup-like shell: the (t, h) that sticks best, from the pull-off map.
 
 A silicone of C10 = 0.3 MPa sticking with gamma = 30 J/m^2, on shells of radius of
 curvature R = 20 mm, thickness 1 to 6 mm and depth 10 to 20 mm.  `shell_adhesion.design`
 searches the shipped pull-off map (a dense grid of the interpolant, then Nelder-Mead) for
-the largest |P*|, then |P*| per preload and |P*| per unit volume of rubber, says whether
+the largest ``|P*|``, then ``|P*|`` per preload and per unit volume of rubber, says whether
 each optimum lies on a bound, and confirms the first with one FE case on the map's mesh.
 
     python examples/ex05_design.py [MAP]     (MAP: coarse, the shipped map, or a map file)

@@ -16,7 +16,7 @@ pytest.importorskip("numpydoc")
 pytest.importorskip("pydata_sphinx_theme")
 
 DOCS = REPO / "docs"
-PAGES = {"index", "getting-started", "one-shell", "studies", "notebook", "materials",
+PAGES = {"index", "getting-started", "one-shell", "fit", "map", "studies", "notebook", "materials",
          "cavities", "figures-gallery", "scaling-out", "domain", "validation",
          "performance", "theory", "api"}
 
@@ -54,6 +54,22 @@ def test_docs_build_without_warnings(site):
     for name in ("solve_case", "R_mm", "run_study", "open_results", "CaseResult",
                  "paper_study", "load_study", "Catalogue", "jkr_P_star_N"):
         assert name in api, name
+
+
+# each example of the gallery, run by the build: what only its output holds
+GALLERY = {"ex01_base_case": r"P\* = -1\.\d+ N", "ex02_hertz_table": r"frictionless \(coarse mesh\)",
+           "ex03_mooney_rivlin": r"relaxation paths 18/18 shells",
+           "ex04_fit_curve": r"fit: \d+\.\d s", "ex05_design": r"map and FE case agree"}
+
+
+def test_the_gallery_runs_every_example(site):
+    run, out = site
+    assert run.returncode == 0, run.stderr[-3000:]
+    examples = {p.stem for p in (REPO / "examples").glob("ex*.py")}
+    assert examples == set(GALLERY), "an example missing from the gallery's checks"
+    for name, pattern in GALLERY.items():
+        text = " ".join(_text(out / "gallery" / f"{name}.html").split())
+        assert re.search(pattern, text), (name, pattern)
 
 
 def test_pages_hold_nothing_of_the_development(site):

@@ -26,8 +26,9 @@ def test_the_driver_drops_the_start_states_it_sent(tmp_path, monkeypatch):
     compute = run_module.compute
 
     def counting(*args, **kwargs):
+        before = _states_with_fields()      # other tests' states may be alive in this process
         result = compute(*args, **kwargs)
-        held["states"] = _states_with_fields()
+        held["states"] = _states_with_fields() - before
         return result
 
     monkeypatch.setattr(run_module, "compute", counting)
@@ -35,6 +36,7 @@ def test_the_driver_drops_the_start_states_it_sent(tmp_path, monkeypatch):
                                  progress=False, workers=2)
     assert outcome.exit_code == 0
     paths = outcome.relaxations_computed
-    assert paths > 6 * run_module.LOW_LEVEL_LOG       # enough paths to tell
-    # the logs of the client's comm and the two workers' hold at most LOW_LEVEL_LOG each
-    assert held["states"] <= 3 * run_module.LOW_LEVEL_LOG, (held["states"], paths)
+    assert paths >= 100                 # enough paths to tell (108 measured)
+    # the logs of the client's comm and the two workers' hold a few messages each (8);
+    # with dask's default of 1000 the driver held one start state per path
+    assert held["states"] <= 30, (held["states"], paths)

@@ -4,10 +4,10 @@ For a material (C10 in MPa, gamma in J/m^2) and a size (the radius of curvature 
 rim radius b of the cap's base, in mm), the search runs over the map's t/R x h/R inside the
 user's bounds (mm) and maximises one objective:
 
-- ``pull_off``: |P*| in N;
-- ``per_preload``: |P*| / preload, the preload being the rim force on the loading curve at
+- ``pull_off``: ``|P*|`` in N;
+- ``per_preload``: ``|P*|`` / preload, the preload being the rim force on the loading curve at
   the contact radius a* (the least compression after which P* is reached), dimensionless;
-- ``per_volume``: |P*| / V in N/mm^3, V the volume of the cap's material.
+- ``per_volume``: ``|P*|`` / V in N/mm^3, V the volume of the cap's material.
 
 A dense grid of the interpolant first, then Nelder-Mead from its best point (scipy).
 Reads only the map (no FE); `shell_adhesion.study.design` confirms with one FE case.

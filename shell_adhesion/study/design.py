@@ -19,7 +19,7 @@ NAMES = ("P_star", "delta_star", "a_star")
 class DesignResult:
     """The map's optimum (`design`) and, unless skipped, its FE confirmation: name_unit ->
     (value, error) of the case, and whether map and case agree within their error bars
-    (`agrees`: |P*_map - P*_case| at most the two error bars in quadrature)."""
+    (`agrees`: ``|P*_map - P*_case|`` at most the two error bars in quadrature)."""
     design: Design
     material: dict
     confirmation: dict = None
@@ -71,8 +71,8 @@ def design(C10_MPa, gamma_J_m2, objective="pull_off", *, R_mm=None, b_mm=None,
     gamma_J_m2 : float
         Work of adhesion [J/m^2].
     objective : {"pull_off", "per_preload", "per_volume"}
-        |P*| [N], |P*| / preload (the rim force at the contact radius a* on loading), or
-        |P*| per material volume [N/mm^3].
+        ``|P*|`` [N], ``|P*|`` / preload (the rim force at the contact radius a* on loading),
+        or ``|P*|`` per material volume [N/mm^3].
     R_mm, b_mm : float
         The size: the outer radius of curvature R [mm], or the rim radius b [mm] of the
         cap's base (then R follows from h); exactly one.

@@ -11,7 +11,6 @@ import pytest
 
 from shell_adhesion.solver import request as rq
 from shell_adhesion.solver.case import UNIFORM_SHARE, solve_paths
-from shell_adhesion.energy import InGradedZone, NotBracketed
 from shell_adhesion.solver.geometry import Cap, delta_bound, domain_delta_max
 from shell_adhesion.solver.mesh import mesh_spec, uniform_radius
 from shell_adhesion.solver.quality import J_RANGE, rim_corner_elements
@@ -113,7 +112,6 @@ def test_rim_corner_neighbourhood():
     """The inner rim corner's neighbourhood (RIM_CORNER t) is left out of the J check: the
     shallow cap that stopped at delta = 0.047 R now loads further, every J outside that
     neighbourhood inside J_RANGE; the neighbourhood is a few elements at the corner."""
-    cap = Cap(0.15, 0.2)
     ps, d, loading = solve_paths(0.15, 0.2, "no_slip", "coarse", 0.07, 0.01, relax_paths=False)
     mask = rim_corner_elements(d.capmesh)
     assert 1 <= mask.sum() <= 4

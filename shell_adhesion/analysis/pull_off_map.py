@@ -200,7 +200,7 @@ class PullOffMap:
     def _interpolation_error(self, curvature, stencil):
         """Linear interpolation's error bound s^2 |f''| / 8 per axis (s: the cell's width,
         f'' the largest of the stencil's points), summed over the axes."""
-        (lt, h, lg), (_, i, j, k, _) = self.coords, stencil[0]
+        (lt, h, lg), (_, i, j, _, _) = self.coords, stencil[0]
         widths = (lt[i + 1] - lt[i] if i + 1 < len(lt) else lt[i] - lt[i - 1],
                   h[j + 1] - h[j] if j + 1 < len(h) else h[j] - h[j - 1],
                   max(lg[kk + 1] - lg[kk] for _, _, _, kk, _ in stencil))

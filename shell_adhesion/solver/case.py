@@ -14,7 +14,7 @@ import numpy as np
 
 from .cavity import OPEN, Cavity, bind, first_touch, lifted
 from shell_adhesion.energy import (Bridged, EnergySurface, InGradedZone, NotBracketed,
-                                   OutOfRange, energy_surface, equilibrium, pull_off)
+                                   energy_surface, equilibrium, pull_off)
 from .forms import Discretisation, discretise
 from .contact import check_interface
 from .geometry import GAMMA_MAX, Cap, check_delta_max, check_gamma, shown

@@ -83,10 +83,10 @@ def check_curve(delta_mm, P_N, name="curve"):
         raise InputError(f"{name}: delta_mm and P_N must be sequences of numbers") from None
     if len(d) != len(P):
         raise InputError(f"{name}: {len(d)} delta_mm values but {len(P)} P_N values")
-    for field, v in zip(HEADER, (d, P)):
+    for column, v in zip(HEADER, (d, P)):
         bad = np.flatnonzero(~np.isfinite(v))
         if len(bad):
-            raise InputError(f"{name}: row {bad[0] + 2}: {field}: {v[bad[0]]} must be a "
+            raise InputError(f"{name}: row {bad[0] + 2}: {column}: {v[bad[0]]} must be a "
                              "finite number")
     n_load = int(np.argmax(d)) + 1 if len(d) else 0
     if n_load < solver_fit.MIN_LOADING_POINTS:

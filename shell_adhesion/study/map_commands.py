@@ -11,7 +11,6 @@ Bad input: one line naming the flag, the value and the rule, exit 2, before any 
 import argparse
 import json
 import math
-import sys
 
 from shell_adhesion.analysis.design_search import OBJECTIVES
 from shell_adhesion.analysis.pull_off_map import MapError

@@ -26,11 +26,9 @@ p_kPa (`Study.swept_cavity`) follows the four factors in the points; `Plan.cavit
 each point's Cavity and `Plan.for_cavity` the part of the plan of one (C10, p_kPa).
 """
 from dataclasses import dataclass, replace
-import math
 
 from shell_adhesion.catalogue import fingerprint
 from shell_adhesion.solver.cavity import OPEN, Cavity
-from shell_adhesion.solver.geometry import shown
 from shell_adhesion.solver.material import NEO_HOOKE, Material
 from shell_adhesion.solver.mesh import coarser_mesh
 from shell_adhesion.solver.path import Settings

@@ -35,6 +35,9 @@ def test_wheel_ships_the_studies(dist):
         assert (whl.read("shell_adhesion/data/mooney_rivlin.yaml")
                 == (REPO / "examples" / "study_mooney_rivlin.yaml").read_bytes())
         assert any(n.endswith(".dist-info/licenses/LICENSE") for n in whl.namelist())
+        # the shipped pull-off map answers a fresh install (sa.pull_off_map())
+        assert (whl.read("shell_adhesion/data/pull_off_map_coarse.nc")
+                == (REPO / "shell_adhesion" / "data" / "pull_off_map_coarse.nc").read_bytes())
 
 
 def test_sdist_holds_the_repository_files(dist):

@@ -79,13 +79,13 @@ def test_ex03_writes_where_it_is_told(tmp_path):
 
 def test_ex05_design():
     """The example's three designs on the coarse map: each at least as good as the best of
-    a brute-force scan of the map inside the bounds, inside the bounds, and the first
-    confirmed by its FE case."""
+    a brute-force scan of the map inside the bounds, and inside the bounds.  (Its FE
+    confirmation runs when the docs build the gallery: test_docs checks that the map and
+    the case agree there.)"""
     spec = importlib.util.spec_from_file_location("ex05", EXAMPLES / "ex05_design.py")
     ex = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(ex)
-    out = ex.designs("coarse")
-    assert out["pull_off"].agrees
+    out = ex.designs("coarse", confirm=False)
     pm = sa.pull_off_map("coarse")
     scan = [pm.shell(ex.R_MM, t, h, ex.C10_MPA, ex.GAMMA_J_M2)["P_star_N"][0]
             for t in np.linspace(*ex.T_BOUNDS_MM, 26) for h in np.linspace(*ex.H_BOUNDS_MM, 26)]

@@ -11,11 +11,13 @@ import json
 import math
 import os
 
+import numpy as np
 import pytest
 
 import shell_adhesion as sa
 from shell_adhesion.cli import main
 from shell_adhesion.study.pull_off_map import DEFAULT_MAP, SHIPPED, map_path, pull_off_map
+from validation import within
 
 R_MM, C10_MPA = 20.0, 1.0
 # off the grid (t/R 0.05 ... 0.4 x h/R 0.5, 0.75, 1 x gamma_hat 0.0003 ... 0.03): a thin
@@ -23,6 +25,9 @@ R_MM, C10_MPA = 20.0, 1.0
 OFF_GRID = [(0.06, 0.9, 0.004), (0.17, 0.55, 0.007), (0.25, 0.65, 0.0015),
             (0.35, 0.85, 0.02), (0.11, 0.8, 0.012)]
 STATED_MAX = 0.02       # the map's stated error, relative to P*, at these shells
+# docs/map.md: the coarse map's misses against coarse cases there, and its stated errors [%]
+DOC_MISSES = (+0.18, -0.49, -0.46, -0.53, -0.22)
+DOC_STATED = (1.6, 0.7, 4.9, 2.7, 2.0)
 
 
 def _case(t, h, g, mesh, error_bars):
@@ -49,6 +54,7 @@ def _check(map_name, mesh, error_bars, stated_max):
     for t, h, g, fe, v, ie, e in rows:
         assert abs(v - fe) <= e, f"t/R {t}, h/R {h}, gamma_hat {g}: map {v} vs FE {fe}, stated {e}"
         assert e <= stated_max * abs(v), f"t/R {t}, h/R {h}, gamma_hat {g}: stated {e / abs(v):.3%}"
+    return rows
 
 
 def test_coarse_map_against_coarse_cases_off_its_grid():
@@ -57,7 +63,36 @@ def test_coarse_map_against_coarse_cases_off_its_grid():
     for t, h, g in OFF_GRID:
         ans = pm.predict(t, h, g)["P_star"]
         assert ans.interpolation_error <= STATED_MAX * abs(ans.value), (t, h, g)
-    _check("coarse", "coarse", False, stated_max=0.08)
+    rows = _check("coarse", "coarse", False, stated_max=0.08)
+    # docs/map.md, each to one unit of its last digit: the misses [%] and the stated errors [%]
+    for (t, h, g, fe, v, _, e), miss, stated in zip(rows, DOC_MISSES, DOC_STATED):
+        within(f"miss at t/R {t}", 100 * (v - fe) / abs(fe), miss, 0.0, floor=0.01)
+        within(f"stated error at t/R {t}", 100 * e / abs(v), stated, 0.0, floor=0.1)
+
+
+def test_the_maps_errors_as_the_docs_state_them():
+    """docs/map.md's interpolation errors of the shipped map over gamma/(C10 R) 0.001-0.03:
+    3000 shells drawn uniformly in (ln t/R, h/R, ln gamma/(C10 R)), seed 0."""
+    pm = pull_off_map()
+    rng = np.random.default_rng(0)
+    (tl, th), (hl, hh) = pm.bounds["t_over_R"], pm.bounds["h_over_R"]
+    rows = []
+    for _ in range(3000):
+        t = math.exp(rng.uniform(math.log(tl), math.log(th)))
+        h = rng.uniform(hl, hh)
+        g = math.exp(rng.uniform(math.log(1e-3), math.log(0.03)))
+        a = pm.predict(t, h, g)["P_star"]
+        rows.append((t, g, 100 * a.interpolation_error / abs(a.value), 100 * a.error / abs(a.value)))
+    t, g, interp, total = np.array(rows).T
+    within("median interpolation error [%]", np.median(interp), 0.8, 0.0, floor=0.1)
+    within("p90 interpolation error [%]", np.percentile(interp, 90), 2.2, 0.0, floor=0.1)
+    within("largest interpolation error [%]", interp.max(), 7.6, 0.0, floor=0.1)
+    within("share below 2 % [%]", 100 * np.mean(interp < 2), 89, 0.0, floor=1)
+    band = (t >= 0.1) & (t < 0.2)
+    within("share above 2 % at t/R 0.1-0.2 [%]", 100 * np.mean(interp[band] > 2), 18, 0.0, floor=1)
+    within("share above 2 % at gamma_hat > 0.01 [%]", 100 * np.mean(interp[g > 0.01] > 2), 18,
+           0.0, floor=1)
+    within("median total error [%]", np.median(total), 2.7, 0.0, floor=0.1)
 
 
 @pytest.mark.slow

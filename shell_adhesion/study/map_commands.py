@@ -15,7 +15,8 @@ import math
 from shell_adhesion.analysis.design_search import OBJECTIVES
 from shell_adhesion.analysis.pull_off_map import MapError
 from shell_adhesion.errors import InputError
-from shell_adhesion.study.pull_off_map import DEFAULT_MAP, SHIPPED
+from shell_adhesion.study.pull_off_map import (DEFAULT_MAP, SHIPPED, build_pull_off_map,
+                                               pull_off_map)
 
 NAMES = (("P_star_N", "P*"), ("delta_star_mm", "delta*"), ("a_star_mm", "a*"),
          ("P_dagger_N", "P_dagger"), ("delta_dagger_mm", "delta_dagger"),
@@ -105,7 +106,6 @@ def _bounds(flag, pair):
 
 
 def _open(map_name):
-    from shell_adhesion.study.pull_off_map import pull_off_map
     try:
         return pull_off_map(map_name)
     except ValueError as e:
@@ -170,7 +170,6 @@ def check_on_map(pm, R, t, h, C10, gamma):
 
 def _build(ns):
     from pathlib import Path
-    from shell_adhesion.study.pull_off_map import build_pull_off_map
     out = Path(ns.out)
     if out.suffix != ".nc":
         raise InputError(f"--out: {ns.out}: the map file must end in .nc (netCDF)")

@@ -1,12 +1,12 @@
 """The layout keeps its promises: the analysis of a cube reads cubes only, importing the
-package stays light, and the solver's key covers every module the solver imports."""
+package stays light, and the key of a path set covers every module that computes one."""
 import json
 import pkgutil
 import subprocess
 import sys
 
 from shell_adhesion import analysis
-from shell_adhesion.study.keys import SOLVER_LEAVES
+from shell_adhesion.study.keys import PATHSET_ROOTS, pathset_modules, solver_source_sha256
 
 from test_import_graph import import_graph
 
@@ -49,10 +49,46 @@ def test_importing_the_package_is_light():
     assert loaded_after("shell_adhesion") == []
 
 
-def test_the_solver_key_covers_what_the_solver_imports():
-    """study.keys.SOLVER_LEAVES: the modules outside solver/ whose code the solver runs."""
+def test_the_pathset_key_covers_what_computes_a_path_set():
+    """study.keys.pathset_modules: the roots and all they import, by this test's own graph;
+    the cohesive interface and arc-length continuation are outside it."""
     graph = import_graph()
-    outside = {m for name, deps in graph.items() if name.startswith("shell_adhesion.solver")
-               for m in deps if not m.startswith("shell_adhesion.solver")}
-    outside.discard("shell_adhesion")        # the package's root: __version__, in the key
-    assert outside == {f"shell_adhesion.{n.removesuffix('.py')}" for n in SOLVER_LEAVES}
+    closure, todo = set(), [f"shell_adhesion.{m}" for m in PATHSET_ROOTS]
+    while todo:
+        m = todo.pop()
+        if m not in closure:
+            closure.add(m)
+            todo.extend(graph[m])
+    closure -= {"shell_adhesion", "shell_adhesion.solver"}   # __version__ is in the key
+    assert closure == {f"shell_adhesion.{m}" for m in pathset_modules()}
+    assert {"shell_adhesion.solver.path", "shell_adhesion.solver.forms",
+            "shell_adhesion.energy"} <= closure
+    assert not closure & {"shell_adhesion.solver.cohesive", "shell_adhesion.solver.arclength"}
+
+
+def test_the_study_computes_path_sets_with_the_keyed_modules():
+    """Every solver module the study's run imports is hashed into the key."""
+    graph = import_graph()
+    used = {m for m in graph["shell_adhesion.study.run"] if m.startswith("shell_adhesion.solver.")}
+    assert used and used <= {f"shell_adhesion.{m}" for m in pathset_modules()}
+
+
+def test_the_source_hash_follows_a_keyed_module(tmp_path, monkeypatch):
+    from shell_adhesion import solver
+    from shell_adhesion.study import keys
+    import shutil
+    copy = tmp_path / "shell_adhesion"
+    shutil.copytree(keys.Path(solver.__file__).parent.parent, copy)
+    monkeypatch.setattr(solver, "__file__", str(copy / "solver" / "__init__.py"))
+    keys.solver_source_sha256.cache_clear()
+    try:
+        before = keys.solver_source_sha256()
+        (copy / "solver" / "cohesive.py").write_text("# changed\n")
+        keys.solver_source_sha256.cache_clear()
+        assert keys.solver_source_sha256() == before
+        with (copy / "solver" / "path.py").open("a") as f:
+            f.write("# changed\n")
+        keys.solver_source_sha256.cache_clear()
+        assert keys.solver_source_sha256() != before
+    finally:
+        keys.solver_source_sha256.cache_clear()

@@ -3,7 +3,7 @@
 `pathset_key` is the key of one set of FE paths: the dimensionless shell, the interface,
 the mesh, how far the paths go (delta_max / R, the largest gamma / (C10 R) they serve),
 the solver tolerances and relaxation rule, the stored layout, the package version and a
-hash of the solver's source, and for a solid other than the incompressible neo-Hookean one
+hash of the source of the modules that compute a path set (`pathset_modules`), and for a solid other than the incompressible neo-Hookean one
 its `solver.material.Material.as_dict()` (the ratios C01/C10, C20/C10, C30/C10, Jm and
 D1 C10: FE dimensions; neo-Hookean keys carry no material field, as before).  C10, R and
 gamma are not in it, except
@@ -13,6 +13,7 @@ p_atm/C10, n) is the key's `cavity` field, so each C10 of a closed shell is its 
 relaxation path of a set by its loaded start state, so a set killed half-way keeps its
 finished paths (catalogue parts stored under the set's fingerprint).
 """
+import ast
 from dataclasses import asdict
 from functools import lru_cache
 import hashlib
@@ -29,18 +30,51 @@ from shell_adhesion.solver.path import Settings, State
 from shell_adhesion.solver.pathset_dataset import LAYOUT
 
 
-# the package's modules outside solver/ that the solver imports (they shape its paths too)
-SOLVER_LEAVES = ("energy.py", "errors.py", "theory.py")
+# the solver modules that compute and store an energy-method path set: the key hashes them
+# and every module of the package they import (the cohesive interface, arc-length continuation,
+# curve fitting and the closed forms are outside it, so work on those keeps stored path sets)
+PATHSET_ROOTS = ("solver.request", "solver.case", "solver.pathset_dataset")
+
+
+def _imported(module: str) -> set:
+    """The package's modules (dotted, below shell_adhesion) that `module`'s source imports."""
+    package_root = Path(solver.__file__).parent.parent
+    path = package_root.joinpath(*module.split(".")).with_suffix(".py")
+    out = set()
+    for node in ast.walk(ast.parse(path.read_text())):
+        if not isinstance(node, ast.ImportFrom):
+            continue
+        if node.level:                      # relative: from .x import ... inside a subpackage
+            base = module.split(".")[: -node.level]
+            name = ".".join(base + ([node.module] if node.module else []))
+        elif (node.module or "").startswith("shell_adhesion."):
+            name = node.module.removeprefix("shell_adhesion.")
+        else:
+            continue
+        if package_root.joinpath(*name.split(".")).with_suffix(".py").is_file():
+            out.add(name)
+    return out
+
+
+def pathset_modules() -> tuple:
+    """PATHSET_ROOTS and every package module they import, transitively (sorted)."""
+    seen, todo = set(), list(PATHSET_ROOTS)
+    while todo:                             # bounded: each module enters `seen` once
+        m = todo.pop()
+        if m not in seen:
+            seen.add(m)
+            todo.extend(_imported(m) - seen)
+    return tuple(sorted(seen))
 
 
 @lru_cache(maxsize=1)
 def solver_source_sha256() -> str:
-    """sha256 over the solver package's Python sources and those of SOLVER_LEAVES (names
-    and contents)."""
-    folder = Path(solver.__file__).parent
+    """sha256 over the names and sources of `pathset_modules()`."""
+    package_root = Path(solver.__file__).parent.parent
     h = hashlib.sha256()
-    for p in [*sorted(folder.glob("*.py")), *(folder.parent / n for n in SOLVER_LEAVES)]:
-        h.update(p.name.encode() + b"\0" + p.read_bytes() + b"\0")
+    for m in pathset_modules():
+        p = package_root.joinpath(*m.split(".")).with_suffix(".py")
+        h.update(m.encode() + b"\0" + p.read_bytes() + b"\0")
     return h.hexdigest()
 
 

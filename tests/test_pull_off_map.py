@@ -1,15 +1,13 @@
 """The shipped pull-off maps against FE cases off their grid, `design` on a case whose
 optimum is known, and the `map` / `design` commands' bad input.
 
-The shipped (coarse) map is checked in CI against coarse cases; a default-mesh map built
-by the user (slow, SHELL_ADHESION_DEFAULT_MAP) against default-mesh cases with their error
-bars.  Map and case come from different meshes of the
-same family (each shell meshed for itself), so their difference is held to the map's
-whole stated error: interpolation and FE in quadrature.
+The shipped default map is checked against default-mesh cases (slow), the coarse one
+against coarse cases (every run).  Map and case come from different meshes of the same family (each shell
+meshed for itself), so their difference is held to the map's whole stated error:
+interpolation and FE in quadrature; the interpolation part is held below 2 %.
 """
 import json
 import math
-import os
 
 import numpy as np
 import pytest
@@ -24,10 +22,12 @@ R_MM, C10_MPA = 20.0, 1.0
 # shell, a shallow one, a thick one, and two between; gamma_hat from 0.0015 to 0.02
 OFF_GRID = [(0.06, 0.9, 0.004), (0.17, 0.55, 0.007), (0.25, 0.65, 0.0015),
             (0.35, 0.85, 0.02), (0.11, 0.8, 0.012)]
-STATED_MAX = 0.02       # the map's stated error, relative to P*, at these shells
-# docs/map.md: the coarse map's misses against coarse cases there, and its stated errors [%]
-DOC_MISSES = (+0.18, -0.49, -0.46, -0.53, -0.22)
-DOC_STATED = (1.6, 0.7, 4.9, 2.7, 2.0)
+INTERPOLATION_MAX = 0.02    # the map's interpolation error, relative to P*, at these shells
+# docs/map.md: each map's misses against cases on its mesh there [%], its stated errors [%]
+# (interpolation and FE in quadrature) and their interpolation parts [%]
+DOC = {"coarse": dict(misses=(+0.18, -0.49, -0.46, -0.53, -0.22), stated=(1.6, 0.7, 4.9, 2.7, 2.0)),
+       "default": dict(misses=(+0.15, -0.21, +0.06, -0.14, -0.29), stated=(1.5, 1.2, 2.3, 0.9, 1.5),
+                       interpolation=(1.3, 0.6, 0.3, 0.7, 0.9))}
 
 
 def _case(t, h, g, mesh, error_bars):
@@ -39,70 +39,77 @@ def _case(t, h, g, mesh, error_bars):
     return po["fixed_load"]["P_N"] / scale, (po["fixed_load"].get("P_N_error") or 0) / scale
 
 
-def _check(map_name, mesh, error_bars, stated_max):
+def _check(map_name):
+    """The map's P* against a case on its own mesh at each OFF_GRID shell, printed; every
+    miss within the stated error, every interpolation error below INTERPOLATION_MAX, and
+    docs/map.md's numbers, each to one unit of its last digit."""
     pm = pull_off_map(map_name)
-    assert pm.ds.attrs["mesh"] == mesh
+    assert pm.ds.attrs["mesh"] == map_name
     rows = []
     for t, h, g in OFF_GRID:
-        P_fe, _ = _case(t, h, g, mesh, error_bars)
+        P_fe, _ = _case(t, h, g, map_name, False)
         ans = pm.predict(t, h, g)["P_star"]
         rows.append((t, h, g, P_fe, ans.value, ans.interpolation_error, ans.error))
     print("\nt/R   h/R   g_hat   P*_FE/(C10R^2)  map      interp err  stated err  miss")
     for t, h, g, fe, v, ie, e in rows:
         print(f"{t:<5} {h:<5} {g:<7} {fe:<15.6f} {v:<8.6f} {100 * ie / abs(v):6.2f} %  "
               f"{100 * e / abs(v):6.2f} %   {100 * (v - fe) / abs(fe):+.2f} %")
-    for t, h, g, fe, v, ie, e in rows:
+    doc = DOC[map_name]
+    for k, (t, h, g, fe, v, ie, e) in enumerate(rows):
         assert abs(v - fe) <= e, f"t/R {t}, h/R {h}, gamma_hat {g}: map {v} vs FE {fe}, stated {e}"
-        assert e <= stated_max * abs(v), f"t/R {t}, h/R {h}, gamma_hat {g}: stated {e / abs(v):.3%}"
-    return rows
+        assert ie <= INTERPOLATION_MAX * abs(v), f"t/R {t}: interpolation {ie / abs(v):.3%}"
+        within(f"miss at t/R {t}", 100 * (v - fe) / abs(fe), doc["misses"][k], 0.0, floor=0.01)
+        within(f"stated error at t/R {t}", 100 * e / abs(v), doc["stated"][k], 0.0, floor=0.1)
+        if "interpolation" in doc:
+            within(f"interpolation error at t/R {t}", 100 * ie / abs(v),
+                   doc["interpolation"][k], 0.0, floor=0.1)
 
 
 def test_coarse_map_against_coarse_cases_off_its_grid():
-    # the coarse mesh's own FE error bars are up to 5 %: the 2 % is the interpolation's
-    pm = pull_off_map("coarse")
-    for t, h, g in OFF_GRID:
-        ans = pm.predict(t, h, g)["P_star"]
-        assert ans.interpolation_error <= STATED_MAX * abs(ans.value), (t, h, g)
-    rows = _check("coarse", "coarse", False, stated_max=0.08)
-    # docs/map.md, each to one unit of its last digit: the misses [%] and the stated errors [%]
-    for (t, h, g, fe, v, _, e), miss, stated in zip(rows, DOC_MISSES, DOC_STATED):
-        within(f"miss at t/R {t}", 100 * (v - fe) / abs(fe), miss, 0.0, floor=0.01)
-        within(f"stated error at t/R {t}", 100 * e / abs(v), stated, 0.0, floor=0.1)
-
-
-def test_the_maps_errors_as_the_docs_state_them():
-    """docs/map.md's interpolation errors of the shipped map over gamma/(C10 R) 0.001-0.03:
-    3000 shells drawn uniformly in (ln t/R, h/R, ln gamma/(C10 R)), seed 0."""
-    pm = pull_off_map()
-    rng = np.random.default_rng(0)
-    (tl, th), (hl, hh) = pm.bounds["t_over_R"], pm.bounds["h_over_R"]
-    rows = []
-    for _ in range(3000):
-        t = math.exp(rng.uniform(math.log(tl), math.log(th)))
-        h = rng.uniform(hl, hh)
-        g = math.exp(rng.uniform(math.log(1e-3), math.log(0.03)))
-        a = pm.predict(t, h, g)["P_star"]
-        rows.append((t, g, 100 * a.interpolation_error / abs(a.value), 100 * a.error / abs(a.value)))
-    t, g, interp, total = np.array(rows).T
-    within("median interpolation error [%]", np.median(interp), 0.8, 0.0, floor=0.1)
-    within("p90 interpolation error [%]", np.percentile(interp, 90), 2.2, 0.0, floor=0.1)
-    within("largest interpolation error [%]", interp.max(), 7.6, 0.0, floor=0.1)
-    within("share below 2 % [%]", 100 * np.mean(interp < 2), 89, 0.0, floor=1)
-    band = (t >= 0.1) & (t < 0.2)
-    within("share above 2 % at t/R 0.1-0.2 [%]", 100 * np.mean(interp[band] > 2), 18, 0.0, floor=1)
-    within("share above 2 % at gamma_hat > 0.01 [%]", 100 * np.mean(interp[g > 0.01] > 2), 18,
-           0.0, floor=1)
-    within("median total error [%]", np.median(total), 2.7, 0.0, floor=0.1)
+    _check("coarse")
 
 
 @pytest.mark.slow
 def test_default_map_against_default_cases_off_its_grid():
-    # the default-mesh map is not shipped (hours to build): SHELL_ADHESION_DEFAULT_MAP
-    # names a file built by `shell-adhesion map build` from `shell-adhesion example map`
-    built = os.environ.get("SHELL_ADHESION_DEFAULT_MAP")
-    if not built:
-        pytest.skip("SHELL_ADHESION_DEFAULT_MAP (a default-mesh map file) not set")
-    _check(built, "default", True, stated_max=STATED_MAX)
+    # five default-mesh cases: about 200 s on 2 cores, too long for every run
+    _check("default")
+
+
+def test_the_maps_errors_as_the_docs_state_them():
+    """docs/map.md's interpolation errors of the shipped default map over gamma/(C10 R)
+    0.001-0.03: 3000 shells drawn uniformly in (ln t/R, h/R, ln gamma/(C10 R)), seed 0;
+    those that need one of its holes are refused by name and counted."""
+    pm = pull_off_map()
+    rng = np.random.default_rng(0)
+    (tl, th), (hl, hh) = pm.bounds["t_over_R"], pm.bounds["h_over_R"]
+    rows, holes = [], 0
+    for _ in range(3000):
+        t = math.exp(rng.uniform(math.log(tl), math.log(th)))
+        h = rng.uniform(hl, hh)
+        g = math.exp(rng.uniform(math.log(1e-3), math.log(0.03)))
+        try:
+            a = pm.predict(t, h, g)["P_star"]
+        except ValueError as e:
+            assert "no pull-off at its grid point t_over_R 0.05, h_over_R 0.5" in str(e), str(e)
+            holes += 1
+            continue
+        rows.append((t, g, 100 * a.interpolation_error / abs(a.value), 100 * a.error / abs(a.value)))
+    t, g, interp, total = np.array(rows).T
+    within("shells that need a hole", holes, 81, 0.0, floor=0.5)
+    within("median interpolation error [%]", np.median(interp), 0.8, 0.0, floor=0.1)
+    within("p90 interpolation error [%]", np.percentile(interp, 90), 2.9, 0.0, floor=0.1)
+    within("largest interpolation error [%]", interp.max(), 7.5, 0.0, floor=0.1)
+    within("share below 2 % [%]", 100 * np.mean(interp < 2), 86, 0.0, floor=1)
+    band = (t >= 0.1) & (t < 0.2)
+    within("share above 2 % at t/R 0.1-0.2 [%]", 100 * np.mean(interp[band] > 2), 18, 0.0, floor=1)
+    within("share above 2 % at gamma_hat > 0.01 [%]", 100 * np.mean(interp[g > 0.01] > 2), 24,
+           0.0, floor=1)
+    within("median total error [%]", np.median(total), 1.7, 0.0, floor=0.1)
+    # the FE part: grid points whose error bar is above 2 % of P*, and the largest
+    fe = (pm.ds["P_star_error"] / abs(pm.ds["P_star"])).values
+    fe = fe[np.isfinite(fe)]
+    within("grid points with an FE error bar above 2 % [%]", 100 * np.mean(fe > 0.02), 14, 0.0, floor=1)
+    within("largest FE error bar [%]", 100 * fe.max(), 4.9, 0.0, floor=0.1)
 
 
 def test_shipped_maps_are_in_the_package_with_their_studies():
@@ -115,15 +122,6 @@ def test_shipped_maps_are_in_the_package_with_their_studies():
         assert pm.ds.attrs["mesh"] == name
     assert sa.examples.study_text("map").count("mesh: default") == 1
     assert sa.examples.study_text("map-coarse").count("mesh: coarse") == 1
-
-
-def test_a_map_not_shipped_says_how_to_build_it(capsys):
-    with pytest.raises(ValueError, match="'default' is not shipped.*map build default.yaml"):
-        map_path("default")
-    assert main(["map", "query", "--map", "default", "--R", "20", "--t", "2", "--h", "15",
-                 "--C10", "1", "--gamma", "30"]) == 2
-    err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and "--map" in err[0] and "example map" in err[0], err
 
 
 def test_design_puts_the_thickness_on_its_bound_and_the_case_agrees():

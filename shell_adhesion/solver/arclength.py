@@ -44,6 +44,7 @@ class ArcSettings:
     max_steps: int = 3000      # states on the whole path
     ds_min: float = 1e-10      # step-length floor: a failure below it ends the path
     dx_max: float = 0.25       # largest change of any outer gap per step, in delta_c
+    dx_travel: float = 0.1     # ... and in delta_max (resolves P where delta_c is long)
     grow: float = 1.5          # step growth after an easy step (<= 4 iterations)
     cos_min: float = 0.9       # least cosine between the tangents of consecutive states
 
@@ -172,8 +173,10 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
     ended_by = f"step limit: {s.max_steps} states"
     outer_z = d.uz(d.capmesh.outer[cn.candidates])
     while len(states) < s.max_steps:
-        # the step: no outer gap changes by more than dx_max delta_c on the tangent
-        ds = min(ds, s.dx_max * law.delta_c / (np.abs(t[0][outer_z]).max() + abs(t[1])))
+        # the step: no outer gap changes by more than dx_max delta_c (or dx_travel
+        # delta_max) on the tangent
+        ds = min(ds, min(s.dx_max * law.delta_c, s.dx_travel * delta_max)
+                 / (np.abs(t[0][outer_z]).max() + abs(t[1])))
         try:
             x_new, d_new, K, r, it = cn.correct(c, x, delta, t, ds)
             t_new = cn.tangent_at(K, c, t)

@@ -2,32 +2,25 @@
 
 `build_pull_off_map` runs a study over t/R x h/R x gamma (one C10; the catalogue, dask and
 the error bars of any study) and writes the dimensionless map beside its cube;
-`pull_off_map` opens the shipped map (``coarse``: coarse mesh, `no_slip`, neo-Hookean; its
-study is `shell_adhesion/data/pull_off_map_coarse.yaml`) or a map file.  The default-mesh
-map (``default``, study `shell_adhesion/data/pull_off_map.yaml`, about 7500 relaxation
-paths: hours on 2 cores) is not shipped yet: build it and pass its file.  The interpolant itself is `shell_adhesion.analysis.pull_off_map`.
+`pull_off_map` opens a shipped map or a map file.  Shipped: ``default`` (default mesh,
+`no_slip`, neo-Hookean; its study is `shell_adhesion/data/pull_off_map.yaml`) and
+``coarse`` (the same grid on the coarse mesh, `pull_off_map_coarse.yaml`).  The
+interpolant itself is `shell_adhesion.analysis.pull_off_map`.
 """
 from pathlib import Path
 
 from shell_adhesion.analysis.pull_off_map import PullOffMap, map_from_cube
 from shell_adhesion.examples import DATA
 
-SHIPPED = {"coarse": "pull_off_map_coarse.nc"}
-STUDIES = {"default": "pull_off_map.yaml", "coarse": "pull_off_map_coarse.yaml"}
-DEFAULT_MAP = "coarse"          # the map used when none is named
-EXAMPLE_OF = {"default": "map", "coarse": "map-coarse"}     # `shell-adhesion example NAME`
+SHIPPED = {"default": "pull_off_map.nc", "coarse": "pull_off_map_coarse.nc"}
+DEFAULT_MAP = "default"         # the map used when none is named
 
 
 def map_path(map=DEFAULT_MAP) -> Path:
     """The file of a shipped map (a key of SHIPPED) or of a map file given by path;
-    ValueError naming --map otherwise (for a map that is only a study: how to build it)."""
+    ValueError naming --map otherwise."""
     if str(map) in SHIPPED:
         return DATA / SHIPPED[str(map)]
-    if str(map) in STUDIES:
-        raise ValueError(
-            f"--map: {str(map)!r} is not shipped (shipped: {', '.join(SHIPPED)}); build it "
-            f"with `shell-adhesion example {EXAMPLE_OF[str(map)]} > {map}.yaml && "
-            f"shell-adhesion map build {map}.yaml --out {map}.nc` and pass --map {map}.nc")
     path = Path(map)
     if not path.is_file():
         raise ValueError(f"--map: {str(map)!r} is neither a shipped map "
@@ -36,7 +29,7 @@ def map_path(map=DEFAULT_MAP) -> Path:
 
 
 def pull_off_map(map=DEFAULT_MAP) -> PullOffMap:
-    """The interpolant of a pull-off map: the shipped one by name (``coarse``) or a file
+    """The interpolant of a pull-off map: a shipped one by name (``default``, ``coarse``) or a file
     written by `build_pull_off_map`.
 
     ``pull_off_map().shell(R_mm=20, t_mm=3, h_mm=20, C10_MPa=0.3, gamma_J_m2=30)`` gives

@@ -12,9 +12,10 @@ The default mesh gives -1.9651 at lambda 0.05 (the coarse mesh's to 0.01 %).  He
 issue's 2 % (and the DMT limit to its 3 %).  a* and delta* are not yet within the issue's
 3 % (A* 0.867 against 0.904 and Dbar* -0.325 against -0.484 at lambda = 1), so they are
 not held; halving the ramp (0.25 delta_c: Pbar* -1.6193, A* 0.812, Dbar* -0.329) does not
-close the gap, so the smoothing is not its cause (a ramp of 0.1 delta_c does not turn).  lambda = 3 is not held: the path passes the jump-in fold, then follows the branch
-behind it (delta falling, a growing: the JKR-like unstable branch) below delta0 = -2 reach,
-where trace's "turned back below delta0" stop ends it (a false stop: the shell is in range).
+close the gap, so the smoothing is not its cause (a ramp of 0.1 delta_c does not turn).
+lambda = 3 is not held: with the stop below delta0 now only out of range (the branch
+behind the jump-in of a compliant body lies below delta0, in contact), the path still
+does not come back to turn at delta_max.
 """
 import math
 

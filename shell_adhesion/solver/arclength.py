@@ -204,8 +204,10 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
         elif turn >= 0 and gaps(d, x, cn.candidates).min() > law.reach:
             ended_by = "left the cohesive range"
             break
-        elif turn < 0 and delta < delta0:
-            ended_by = f"the approach turned back below delta0 = {delta0:.6g} R"
+        elif turn < 0 and delta < delta0 and gaps(d, x, cn.candidates).min() > law.reach:
+            # below delta0 in contact is the branch behind the jump-in (a compliant shell
+            # held by its adhered apex); out of range, the approach went back
+            ended_by = f"the approach turned back out of range below delta0 = {delta0:.6g} R"
             break
     return ArcPath(tuple(states), turn, ended_by, cn.timer)
 

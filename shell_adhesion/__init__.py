@@ -3,6 +3,7 @@ rigid plane (axisymmetric finite elements and Maugis' energy method).
 
     import shell_adhesion as sa
     case = sa.solve_case(R_mm=20, t_mm=3, h_mm=20, C10_MPa=0.3, gamma_J_m2=[30])
+    sa.solve_cohesive_case(R_mm=20, t_mm=3, h_mm=20, C10_MPa=0.3, gamma_J_m2=30, tabor=1)
     case.to_dataset()             # curves along named dimensions, units on every variable
     fit = sa.fit_curve(R_mm=20, t_mm=3, h_mm=20, curve="test.csv")   # C10, gamma of a test
     ds = sa.open_results("results/paper.nc")
@@ -27,6 +28,7 @@ __version__ = "0.1.0"       # the one place it is written (pyproject.toml reads 
 _LAZY = {
     "solve_case": "shell_adhesion.study.case",
     "CaseResult": "shell_adhesion.study.case",
+    "solve_cohesive_case": "shell_adhesion.study.cohesive_case",
     "open_results": "shell_adhesion.analysis.results",
     "run_study": "shell_adhesion.study.run",
     "fit_curve": "shell_adhesion.study.fit",

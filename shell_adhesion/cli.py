@@ -1,6 +1,7 @@
 """The `shell-adhesion` command line.
 
     shell-adhesion case --R 20 --t 3 --h 20 --C10 0.3 [--gamma 30 ...] [--json [--curves]]
+    shell-adhesion case --R 20 --t 3 --h 20 --C10 0.3 --gamma 30 --adhesion dugdale --tabor 1
         [--material neo-hookean|mooney-rivlin|yeoh|gent] [--C01 C] [--C20 C] [--C30 C]
         [--Jm J] [--D1 D]
     shell-adhesion fit --R 20 --t 3 --h 20 --curve test.csv [--pull-off-N P] [--json]
@@ -36,6 +37,7 @@ from shell_adhesion.solver import INTERFACES
 from shell_adhesion.study import case as case_api
 from shell_adhesion.study import map_commands
 from shell_adhesion.study.case_input import MESHES, case_input
+from shell_adhesion.study.cohesive_case import ADHESIONS
 
 FIGURE_FORMATS = ("png", "pdf", "svg")
 HARD_EXIT_S = 45.0      # a run still ending this long after Ctrl-C is ended at once
@@ -46,6 +48,7 @@ CASE_FLAGS = dict(R_mm="--R", t_mm="--t", h_mm="--h", C10_MPa="--C10",
                   C30_MPa="--C30", Jm="--Jm", D1_per_MPa="--D1", cavity="--cavity",
                   p_kPa="--p-kPa", p0_kPa="--p0-kPa", p_atm_kPa="--p-atm-kPa",
                   gas_exponent="--gas-exponent")
+COHESIVE_FLAGS = dict(CASE_FLAGS, sigma0_MPa="--sigma0", tabor="--tabor", adhesion="--adhesion")
 CAVITY_FLAGS = (("p_kPa", "kPa"), ("p0_kPa", "kPa"), ("p_atm_kPa", "kPa"), ("gas_exponent", "1"))
 MATERIAL_FLAGS = (("C01", "C01_MPa", "MPa"), ("C20", "C20_MPa", "MPa"), ("C30", "C30_MPa", "MPa"),
                   ("Jm", "Jm", "1"), ("D1", "D1_per_MPa", "1/MPa"))
@@ -99,6 +102,13 @@ def _number(flag, text, unit):
 
 
 def _run_case(ns):
+    if ns.adhesion == "dugdale":
+        return _run_cohesive_case(ns)
+    for flag in ("sigma0", "tabor"):
+        if getattr(ns, flag) is not None:
+            raise InputError(f"--{flag}: {getattr(ns, flag)} given with --adhesion energy: "
+                             f"a cohesive strength needs --adhesion dugdale")
+    ns.interface = ns.interface or "no_slip"
     solid = {arg: _number(f"--{flag}", getattr(ns, flag), unit)
              for flag, arg, unit in MATERIAL_FLAGS if getattr(ns, flag) is not None}
     solid.update({arg: _number(CASE_FLAGS[arg], getattr(ns, arg), unit)
@@ -121,6 +131,62 @@ def _run_case(ns):
     else:
         _print_case(result.to_dict(curves=True))
     return 1 if result.refused else 0       # every answer is printed; a refusal fails
+
+
+def _run_cohesive_case(ns):
+    """`case --adhesion dugdale`: the Maugis-Dugdale pull-off (study.cohesive_case)."""
+    from shell_adhesion.study import cohesive_case
+
+    solid = {arg: _number(f"--{flag}", getattr(ns, flag), unit)
+             for flag, arg, unit in MATERIAL_FLAGS if getattr(ns, flag) is not None}
+    solid.update({arg: _number(CASE_FLAGS[arg], getattr(ns, arg), unit)
+                  for arg, unit in CAVITY_FLAGS if getattr(ns, arg) is not None},
+                 cavity=ns.cavity, material=ns.material)
+    inp = cohesive_case.cohesive_input(
+        _number("--R", ns.R, "mm"), _number("--t", ns.t, "mm"), _number("--h", ns.h, "mm"),
+        _number("--C10", ns.C10, "MPa"),
+        [_number("--gamma", g, "J/m^2") for g in ns.gamma or []],
+        None if ns.sigma0 is None else _number("--sigma0", ns.sigma0, "MPa"),
+        None if ns.tabor is None else _number("--tabor", ns.tabor, "1"),
+        None if ns.delta_max is None else _number("--delta-max", ns.delta_max, "mm"),
+        ns.interface or "frictionless", ns.mesh, names=COHESIVE_FLAGS, **solid)
+    result = cohesive_case.solve_checked(inp, error_bars=not ns.no_error_bars,
+                                         progress=not ns.json)
+    if ns.json:
+        print(result.to_json(curves=ns.curves))
+    else:
+        _print_cohesive(result.to_dict())
+    return 1 if result.refused else 0
+
+
+def _print_cohesive(out):
+    inp, law = out["input"], out["law"]
+    print(f"shell R = {inp['R_mm']:g} mm, t = {inp['t_mm']:g} mm, h = {inp['h_mm']:g} mm, "
+          f"neo-Hookean C10 = {inp['C10_MPa']:g} MPa, interface {inp['interface']}, "
+          f"mesh {inp['mesh']}")
+    print(f"Dugdale adhesion: gamma = {law['gamma_J_m2']:g} J/m^2, sigma0 = "
+          f"{law['sigma0_MPa']:.4g} MPa, range delta_c = {law['delta_c_mm']:.4g} mm, "
+          f"lambda = {law['tabor']:.4g} (smooth step {law['smooth_step']})")
+    checks = out["checks"]
+    print(f"path: {checks['states']} states, {checks['path_ended_by']}")
+    if out["refused"]:
+        print(f"no pull-off: the path {out['refused']}")
+    else:
+        po = out["pull_off"]
+        asked = out["provenance"].get("coarser_mesh") is not None
+
+        def pm(name, unit=" mm"):
+            return _pm(po, name, unit, asked)
+
+        print(f"fixed load:  P* = {pm('P_star_N', ' N')}, delta* = {pm('delta_star_mm')}, "
+              f"a* = {pm('a_star_mm')}, c* = {pm('c_star_mm')}")
+        if po["P_dagger_N"] is None:
+            print("fixed grips: no jump (delta has no fold: the shell separates smoothly)")
+        else:
+            print(f"fixed grips: P = {pm('P_dagger_N', ' N')}, delta = "
+                  f"{pm('delta_dagger_mm')}, a = {pm('a_dagger_mm')}, c = {pm('c_dagger_mm')}")
+    for note in checks["notes"]:
+        print(f"note: {note}")
 
 
 FIT_FLAGS = dict(R_mm="--R", t_mm="--t", h_mm="--h", curve="--curve",
@@ -403,8 +469,19 @@ def _parser():
                       help="largest rim approach delta [mm] (default R/4)")
     case.add_argument("--gamma", action="append",
                       help="adhesion energy gamma [J/m^2]; repeat for several (one FE run serves all)")
-    case.add_argument("--interface", choices=INTERFACES, default="no_slip",
-                      help="interface model (default no_slip, the paper's cohesive contact)")
+    case.add_argument("--interface", choices=INTERFACES, default=None,
+                      help="interface model (default no_slip, the paper's; frictionless "
+                           "with --adhesion dugdale, the only one it has)")
+    case.add_argument("--adhesion", choices=ADHESIONS, default="energy",
+                      help="energy (default): zero-range adhesion, Maugis' energy method; "
+                           "dugdale: finite range, a cohesive zone of stress --sigma0 "
+                           "(or --tabor) traced through the jumps, one --gamma")
+    case.add_argument("--sigma0", default=None,
+                      help="with --adhesion dugdale: cohesive stress sigma0 [MPa] (range "
+                           "gamma / sigma0)")
+    case.add_argument("--tabor", default=None,
+                      help="with --adhesion dugdale: Tabor-Maugis parameter lambda instead "
+                           "of --sigma0 (0.05 DMT-like to 10 JKR-like)")
     case.add_argument("--mesh", choices=MESHES, default="default", help="mesh density")
     case.add_argument("--cavity", default="open", metavar="MODE",
                       help="open (default), pressure (prescribed gauge --p-kPa) or sealed "

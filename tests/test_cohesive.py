@@ -36,7 +36,7 @@ def test_law_has_dugdales_peak_and_work(ramp):
 def test_penalty_below_the_plane():
     law = CohesiveLaw(SIGMA0, GAMMA)
     k, e = law.stiffness, PENALTY_ONSET * law.delta_c
-    assert k == pytest.approx(1e4 * SIGMA0 / 1e-3)
+    assert k == pytest.approx(1e3 * SIGMA0 / 1e-3)     # the default slope: 1e3 sigma0 / delta_c
     g = -10 * e                     # beyond the onset: slope k
     phi, sigma, dsigma = law(np.array([g]))
     assert sigma[0] == pytest.approx(SIGMA0 + k * (g + e / 2))       # pushes back

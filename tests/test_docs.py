@@ -17,7 +17,7 @@ pytest.importorskip("pydata_sphinx_theme")
 
 DOCS = REPO / "docs"
 PAGES = {"index", "getting-started", "one-shell", "fit", "map", "studies", "notebook", "materials",
-         "cavities", "figures-gallery", "scaling-out", "domain", "validation",
+         "cavities", "adhesion-range", "figures-gallery", "scaling-out", "domain", "validation",
          "performance", "theory", "api"}
 
 # what a user's page must not hold: the machinery of our development

@@ -3,16 +3,19 @@
 (solver.maugis_dugdale, E* = 8 C10, K = 4 E* / 3) on the coarse mesh, with the whole
 S-shaped path (jump-in, contact, retraction, fold) traced by arc-length continuation.
 
-Measured (coarse mesh, 4454 dofs, ramp 0.5 delta_c; steps of at most 0.25 delta_c and
-0.1 delta_max of gap; benchmarks/maugis_dugdale_fe.py), Pbar* against the closed form:
-lambda 0.05: -1.9652 / -1.9814 (-0.8 %; -1.7 % from the DMT -2), 696 states, 25 s;
-lambda 0.1: -1.9428 / -1.9506 (-0.4 %), 374 states, 15 s; lambda 0.3: -1.8150 / -1.8156
-(-0.03 %), 169 states, 10 s; lambda 1: -1.6145 / -1.6007 (+0.9 %), 177 states, 24 s.
-The default mesh gives -1.9651 at lambda 0.05 (the coarse mesh's to 0.01 %).  Held to the
-issue's 2 % (and the DMT limit to its 3 %).  a* and delta* are not yet within the issue's
-3 % (A* 0.867 against 0.904 and Dbar* -0.325 against -0.484 at lambda = 1), so they are
-not held; halving the ramp (0.25 delta_c: Pbar* -1.6193, A* 0.812, Dbar* -0.329) does not
-close the gap, so the smoothing is not its cause (a ramp of 0.1 delta_c does not turn).
+Measured (coarse mesh, 4454 dofs, ramp 0.5 delta_c, penalty 1e3 sigma0 / delta_c; steps of
+at most 0.25 delta_c and 0.1 delta_max of gap; benchmarks/maugis_dugdale_fe.py), Pbar*
+against the closed form: lambda 0.05: -1.9664 / -1.9814 (-0.76 %; -1.7 % from the DMT -2);
+lambda 0.1: -1.9450 / -1.9506 (-0.29 %), 374 states; lambda 0.3: -1.8172 / -1.8156
+(+0.09 %), 166 states; lambda 1: -1.6143 / -1.6007 (+0.85 %), 171 states.  Held at twice
+the README's deviations and to the issue's 2 % (the DMT limit to its 3 %).  a* and delta*
+are not held: A* 0.268 / 0.495 / 0.904 against 0.199 / 0.497 / 0.904 and Dbar* -0.370 /
+-0.509 / -0.328 against -0.430 / -0.542 / -0.484 at lambda 0.1 / 0.3 / 1.  The contact
+radius (where the gap crosses 0) is ill-defined where the surface meets the plane at a
+grazing angle: the penalty 1e4 sigma0 / delta_c gave A* 0.867 at lambda 1; delta* of
+the hemisphere carries its finite-body compliance (about +0.03 |Pbar| in Dbar: the
+energy method's JKR Dbar* is -0.397 against -0.437).  Halving the ramp (0.25 delta_c)
+does not close the gap at lambda 1 (a ramp of 0.1 delta_c does not turn).
 lambda = 3 is not held: with the stop below delta0 now only out of range (the branch
 behind the jump-in of a compliant body lies below delta0, in contact), the path still
 does not come back to turn at delta_max.
@@ -29,6 +32,11 @@ from shell_adhesion.solver.forms import discretise
 from shell_adhesion.solver.geometry import Cap
 from shell_adhesion.solver.mesh import cap_mesh, mesh_spec
 
+from validation import deviations_within
+
+# the README's deviations of P* from the closed form (coarse mesh), held at twice their size
+STATED = {0.1: -0.0029, 0.3: +0.0009, 1.0: +0.0085}
+STATED_DMT = -0.017           # lambda 0.05 from DMT's -2
 GAMMA_HAT = 1.7e-4            # gamma / (C10 R)
 K_HAT = 4 / 3 * 8             # K / C10
 DELTA_MAX = 2e-3              # / R: about 1.5 Maugis approach units, contact A ~ 1.6
@@ -51,7 +59,9 @@ def test_pull_off_follows_maugis_dugdale(lam):
     print(f"lambda {lam}: Pbar* {P:.4f} (closed form {ref.P:.4f}), A* "
           f"{po.a_star / sc['length']:.3f} ({ref.A:.3f}), Dbar* "
           f"{po.delta_star / sc['approach']:.3f} ({ref.D:.3f}), {len(path.states)} states")
-    assert math.isfinite(P) and abs(P / ref.P - 1) <= 0.02
+    assert math.isfinite(P) and abs(P / ref.P - 1) <= 0.02       # the criterion
+    deviations_within(f"Maugis-Dugdale lambda {lam}", {"P_star": P / ref.P - 1},
+                      {"P_star": STATED[lam]})
     # the path is the S: approach from P = 0, compression at the turn, back to P = 0
     Ps = path.array("P")
     assert abs(Ps[0]) <= 1e-12 * abs(po.P_star) and Ps[path.turn] > 0 and abs(Ps[-1]) <= 1e-3 * abs(po.P_star)
@@ -73,4 +83,5 @@ def test_dmt_limit():
     P = pull_off(path).P_star / (math.pi * GAMMA_HAT)
     print(f"lambda 0.05: P*/(pi gamma R) {P:.4f} (DMT -2, closed form {md.pull_off(0.05).P:.4f})")
     assert math.isfinite(P) and abs(P / -2 - 1) <= 0.03
+    deviations_within("DMT limit", {"P_star": P / -2 - 1}, {"P_star": STATED_DMT})
     assert abs(P / md.pull_off(0.05).P - 1) <= 0.02

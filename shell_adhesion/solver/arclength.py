@@ -152,10 +152,10 @@ class _Continuation:
 
 
 def trace(iface: Interface, delta_max: float, delta0: float = None,
-          settings: ArcSettings = ArcSettings(), progress=None) -> ArcPath:
+          settings: ArcSettings = ArcSettings(), progress=None, a_turn: float = None) -> ArcPath:
     """The equilibrium path from the shell lifted to delta0 / R (default: twice the law's
-    reach above the plane) to delta_max / R and back until the shell leaves the cohesive
-    range (or settings.max_steps states)."""
+    reach above the plane) to delta_max / R (or, sooner, to a contact radius of a_turn / R)
+    and back until the shell leaves the cohesive range (or settings.max_steps states)."""
     if not (math.isfinite(delta_max) and delta_max > 0):
         raise ValueError(f"delta_max: {delta_max!r} must be a finite number > 0 (units of R)")
     s, law, d = settings, iface.law, iface.d
@@ -198,7 +198,9 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
             progress(states[-1])
         if it <= 4:
             ds *= s.grow
-        if turn < 0 and delta >= delta_max:
+        # (a_turn only where the approach advances: behind the jump-in, delta falls)
+        if turn < 0 and (delta >= delta_max
+                         or a_turn is not None and states[-1].a >= a_turn and t[1] > 0):
             turn = len(states) - 1
             t = (-t[0], -t[1])
         elif turn >= 0 and gaps(d, x, cn.candidates).min() > law.reach:

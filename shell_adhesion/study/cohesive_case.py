@@ -1,0 +1,299 @@
+"""One shell with finite-range (Maugis-Dugdale) adhesion, with units:
+`shell_adhesion.solve_cohesive_case` and `shell-adhesion case --adhesion dugdale`.
+
+The interface pulls with sigma0 wherever the outer surface's gap is below delta_c =
+gamma / sigma0 (`solver.cohesive`, Dugdale's law with a cubic smooth-step of half delta_c;
+frictionless contact); the whole path (approach, jump-in, pressed state, retraction,
+jump-off) is traced by arc-length continuation (`solver.arclength`) and gives the
+fixed-load pull-off (least P) and the fixed-grips one (the fold in delta), with the
+contact radius a (gap 0) and the cohesive-zone radius c (gap delta_c).  The strength is
+given as sigma0 [MPa] or as the Tabor-Maugis parameter lambda = 2 sigma0 (R / (pi gamma
+K^2))^(1/3), K = 4 E* / 3, E* = 8 C10 (the solid sphere's; for a shell it is a measure of
+the range against R).  Error bars from the next coarser mesh (`solver.error_bars`).
+
+Units: R, t, h, delta, a, c in mm; C10 and sigma0 in MPa; gamma in J/m^2; P in N (> 0
+compression; pull-off P < 0); delta > 0 approach.
+"""
+from dataclasses import dataclass, field
+import json
+import math
+import sys
+import time
+
+import numpy as np
+
+from shell_adhesion import __version__
+from shell_adhesion.errors import InputError
+from shell_adhesion.solver import maugis_dugdale as md
+from shell_adhesion.solver.arclength import ArcPath, CohesivePullOff, pull_off, trace
+from shell_adhesion.solver.cohesive import TABOR_RANGE, CohesiveLaw, Interface
+from shell_adhesion.solver.error_bars import error_bar
+from shell_adhesion.solver.forms import discretise
+from shell_adhesion.solver.geometry import Cap, delta_bound
+from shell_adhesion.solver.material import NEO_HOOKE
+from shell_adhesion.solver.mesh import cap_mesh, coarser_mesh, mesh_spec
+from shell_adhesion.solver.request import TURN, a_star_estimate, even_arc
+from shell_adhesion.solver.scaling import check_finite, force_N, gamma_hat, length_mm
+
+from .case_input import API_NAMES, CaseInput, case_input
+
+ADHESIONS = ("energy", "dugdale")
+K_OVER_C10 = 32.0 / 3.0       # K = 4 E* / 3 with E* = 8 C10 (incompressible neo-Hookean)
+ZONE_EDGES_MIN = 2.0          # fewer outer edges across the cohesive zone: a warning
+COHESIVE_NAMES = dict(sigma0_MPa="sigma0_MPa", tabor="tabor", adhesion="adhesion")
+# the pull-off values: name, dimensionless field of CohesivePullOff, unit
+PULL_OFF_FIELDS = (("P_star_N", "P_star", "N"), ("delta_star_mm", "delta_star", "mm"),
+                   ("a_star_mm", "a_star", "mm"), ("c_star_mm", "c_star", "mm"),
+                   ("P_dagger_N", "P_dagger", "N"), ("delta_dagger_mm", "delta_dagger", "mm"),
+                   ("a_dagger_mm", "a_dagger", "mm"), ("c_dagger_mm", "c_dagger", "mm"))
+
+
+@dataclass(frozen=True)
+class CohesiveInput:
+    """Checked input of a cohesive case: the shell (`case`, one gamma) and the law's
+    sigma0 [MPa] and lambda (both filled, from whichever was given)."""
+
+    case: CaseInput
+    sigma0_MPa: float
+    tabor: float
+
+    @property
+    def gamma_hat(self) -> float:
+        c = self.case
+        return gamma_hat(c.gamma_J_m2[0], c.C10_MPa, c.R_mm)
+
+    @property
+    def law(self) -> CohesiveLaw:
+        """The dimensionless law (sigma0 / C10, gamma / (C10 R))."""
+        return CohesiveLaw(self.sigma0_MPa / self.case.C10_MPa, self.gamma_hat)
+
+    def as_dict(self) -> dict:
+        return dict(self.case.as_dict(), adhesion="dugdale", sigma0_MPa=self.sigma0_MPa,
+                    tabor=self.tabor)
+
+
+def cohesive_input(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2, sigma0_MPa=None, tabor=None,
+                   delta_max_mm=None, interface="frictionless", mesh="default",
+                   names=None, **solid) -> CohesiveInput:
+    """Check a cohesive case's input before any computation; InputError names the field
+    as `names` calls it (API_NAMES and COHESIVE_NAMES by default).  `solid` holds the
+    material and cavity arguments of `case_input`: only the open neo-Hookean shell is
+    supported."""
+    n = {**API_NAMES, **COHESIVE_NAMES, **(names or {})}
+    inp = case_input(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2, delta_max_mm, interface, mesh,
+                     n, **solid)
+    if inp.material != NEO_HOOKE:
+        raise InputError(f"{n['material']}: {inp.material.model} with {n['adhesion']} dugdale: "
+                         f"the cohesive interface is for the incompressible neo-Hookean "
+                         f"solid only")
+    if inp.cavity.closed:
+        raise InputError(f"{n['cavity']}: {inp.cavity.mode} with {n['adhesion']} dugdale: "
+                         f"the cohesive interface is for the open shell only")
+    if inp.interface != "frictionless":
+        raise InputError(f"{n['interface']}: {inp.interface} with {n['adhesion']} dugdale: "
+                         f"the cohesive interface is frictionless (use frictionless)")
+    if len(inp.gamma_J_m2) != 1:
+        raise InputError(f"{n['gamma_J_m2']}: {len(inp.gamma_J_m2)} values given: "
+                         f"{n['adhesion']} dugdale needs exactly one gamma [J/m^2]")
+    if (sigma0_MPa is None) == (tabor is None):
+        raise InputError(f"{n['sigma0_MPa']}/{n['tabor']}: give exactly one of them with "
+                         f"{n['adhesion']} dugdale ("
+                         + ("both given" if sigma0_MPa is not None else "neither given") + ")")
+    g = gamma_hat(inp.gamma_J_m2[0], inp.C10_MPa, inp.R_mm)
+    if sigma0_MPa is not None:
+        sigma0 = check_finite(sigma0_MPa, n["sigma0_MPa"], "MPa")
+        if not sigma0 > 0:
+            raise InputError(f"{n['sigma0_MPa']}: {sigma0:g} MPa must be > 0")
+        lam = md.tabor_parameter(sigma0 / inp.C10_MPa, g, 1.0, K_OVER_C10)
+        given = f"{n['sigma0_MPa']} = {sigma0:g} MPa gives lambda = {lam:.4g}"
+    else:
+        lam = check_finite(tabor, n["tabor"], "1")
+        if not lam > 0:
+            raise InputError(f"{n['tabor']}: {lam:g} must be > 0")
+        sigma0 = md.sigma0_of(lam, g, 1.0, K_OVER_C10) * inp.C10_MPa
+        given = f"{n['tabor']}: {lam:g}"
+    if not TABOR_RANGE[0] <= lam <= TABOR_RANGE[1]:
+        raise InputError(f"{given}: outside the supported domain {TABOR_RANGE[0]:g} <= "
+                         f"lambda <= {TABOR_RANGE[1]:g} (with gamma = "
+                         f"{inp.gamma_J_m2[0]:g} J/m^2, C10 = {inp.C10_MPa:g} MPa, R = "
+                         f"{inp.R_mm:g} mm)")
+    return CohesiveInput(inp, float(sigma0), float(lam))
+
+
+@dataclass(frozen=True, eq=False)
+class CohesiveSolve:
+    """One traced path on one mesh (dimensionless), its pull-off (None: refused) and why."""
+
+    mesh: str
+    ndof: int
+    path: ArcPath
+    pull_off: CohesivePullOff = None
+    refused: str = ""
+    zone_edges: float = math.nan      # outer edges across the cohesive zone at P*
+    wall_s: float = math.nan
+
+
+@dataclass(frozen=True, eq=False)
+class CohesiveCaseResult:
+    """The cohesive pull-off of one shell: the solve on the requested mesh, the one on the
+    next coarser mesh (error bars; None without), and the notes on what the solver can
+    vouch for."""
+
+    input: CohesiveInput
+    solve: CohesiveSolve
+    coarser: CohesiveSolve = None
+    notes: tuple = ()
+    provenance: dict = field(default_factory=dict)
+
+    @property
+    def refused(self) -> str:
+        """Why the pull-off is not answered ('' if it is)."""
+        return self.solve.refused
+
+    def to_dict(self, curves: bool = False) -> dict:
+        """Plain JSON-able data (NaN as None): input, law, pull_off (values and error bars
+        in N and mm), checks, provenance; `curves`: the traced path in mm and N."""
+        inp = self.input.case
+        R, C10 = inp.R_mm, inp.C10_MPa
+        out = dict(input=self.input.as_dict(), law=self._law_dict(), refused=self.refused or None)
+        if not self.refused:
+            out["pull_off"] = self._pull_off_dict()
+        s = self.solve
+        out["checks"] = dict(path_ended_by=s.path.ended_by, states=len(s.path.states),
+                             cohesive_zone_edges=_clean(s.zone_edges), notes=list(self.notes))
+        out["provenance"] = self.provenance
+        if curves:
+            out["curves"] = dict(
+                delta_mm=[length_mm(q.delta, R) for q in s.path.states],
+                P_N=[force_N(q.P, C10, R) for q in s.path.states],
+                a_mm=[length_mm(q.a, R) for q in s.path.states],
+                c_mm=[length_mm(q.c, R) for q in s.path.states],
+                turn=s.path.turn)
+        return out
+
+    def to_json(self, curves: bool = False) -> str:
+        return json.dumps(self.to_dict(curves), indent=1, allow_nan=False)
+
+    def _law_dict(self):
+        law, R = self.input.law, self.input.case.R_mm
+        return dict(name="Dugdale", sigma0_MPa=self.input.sigma0_MPa, tabor=self.input.tabor,
+                    gamma_J_m2=self.input.case.gamma_J_m2[0],
+                    delta_c_mm=length_mm(law.delta_c, R),
+                    smooth_step=f"cubic, {law.ramp:g} delta_c wide")
+
+    def _pull_off_dict(self):
+        inp = self.input.case
+        R, C10 = inp.R_mm, inp.C10_MPa
+        po = self.solve.pull_off
+        cpo = None if self.coarser is None else self.coarser.pull_off
+        out = {}
+        for name, key, unit in PULL_OFF_FIELDS:
+            scale = (lambda v: force_N(v, C10, R)) if unit == "N" else (lambda v: length_mm(v, R))
+            value = scale(getattr(po, key))
+            err = math.nan if cpo is None else float(error_bar(value, scale(getattr(cpo, key))))
+            out[name] = _clean(value)
+            out[name + "_error"] = _clean(err)
+        return out
+
+
+def _clean(v):
+    return None if v is None or not math.isfinite(v) else float(v)
+
+
+def solve_cohesive_case(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2, *, sigma0_MPa=None, tabor=None,
+                        delta_max_mm=None, interface="frictionless", mesh="default",
+                        error_bars=True, progress=False) -> CohesiveCaseResult:
+    """The Maugis-Dugdale pull-off of one open neo-Hookean shell on a rigid plane.
+
+    Give the interface's strength as `sigma0_MPa` (> 0) or as the Tabor-Maugis parameter
+    `tabor` (one of them).  Without delta_max_mm the approach turns at TURN times the
+    energy method's estimate of the pull-off radius (solver.request), within the domain's
+    depth bound.  `error_bars`: the same path on the next coarser mesh (not when the
+    requested mesh's path is refused).  `progress`: a
+    line per 50 states on stderr.  The input is checked before any computation
+    (InputError names the field).
+    """
+    inp = cohesive_input(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2, sigma0_MPa, tabor,
+                         delta_max_mm, interface, mesh)
+    return solve_checked(inp, error_bars, progress)
+
+
+def solve_checked(inp: CohesiveInput, error_bars=True, progress=False) -> CohesiveCaseResult:
+    """`solve_cohesive_case` of an input already checked by `cohesive_input`."""
+    c = inp.case
+    cap = Cap(c.t_mm / c.R_mm, c.h_mm / c.R_mm)
+    g = inp.gamma_hat
+    a_need = a_star_estimate(cap, g)
+    fit = dict(uniform=even_arc(cap, a_need),
+               delta_max=delta_bound(cap) if c.delta_max_mm is None else c.delta_max_mm / c.R_mm,
+               a_turn=None if c.delta_max_mm is not None else TURN * a_need)
+    units = (c.R_mm, c.C10_MPa) if progress else None
+    solve = _solve(cap, inp.law, c.mesh, fit, units)
+    coarser = (_solve(cap, inp.law, coarser_mesh(c.mesh), fit, units)
+               if error_bars and not solve.refused else None)
+    notes = []
+    if not solve.refused and solve.zone_edges < ZONE_EDGES_MIN:
+        notes.append(f"the cohesive zone at the pull-off spans {solve.zone_edges:.2g} outer "
+                     f"edges (< {ZONE_EDGES_MIN:g}): not resolved by the {c.mesh} mesh; "
+                     f"trust P* within its error bar, a* and c* less")
+    if coarser is not None and coarser.refused and not solve.refused:
+        notes.append(f"no error bars: the {coarser.mesh} mesh's path {coarser.refused}")
+        coarser = None
+    prov = dict(version=__version__, mesh=c.mesh, dofs=solve.ndof,
+                states=len(solve.path.states),
+                newton_iterations=int(solve.path.timer.newton_iterations), wall_s=solve.wall_s,
+                even_arc=fit["uniform"], delta_max_mm=fit["delta_max"] * c.R_mm,
+                a_turn_mm=None if fit["a_turn"] is None else fit["a_turn"] * c.R_mm)
+    if coarser is not None:
+        prov.update(coarser_mesh=coarser.mesh, coarser_wall_s=coarser.wall_s)
+    return CohesiveCaseResult(inp, solve, coarser, tuple(notes), prov)
+
+
+def _solve(cap, law, mesh, fit, units=None) -> CohesiveSolve:
+    """Trace the path on `mesh` and read its pull-off; `units` (R_mm, C10_MPa): report
+    progress in them."""
+    t0 = time.perf_counter()
+    d = discretise(cap_mesh(cap, mesh_spec(mesh, fit["uniform"])))
+    iface = Interface(d, law)
+    report = None if units is None else _progress_line(mesh, *units)
+    path = trace(iface, fit["delta_max"], progress=report, a_turn=fit["a_turn"])
+    wall = time.perf_counter() - t0
+    if path.turn < 0 or path.ended_by != "left the cohesive range":
+        what = "did not turn round" if path.turn < 0 else "ended before leaving the cohesive range"
+        last = path.states[-1]
+        edges = zone_edges(iface, last.a, last.c) if last.a > 0 else math.nan
+        hint = (f"; at its last state the cohesive zone spans {edges:.2g} outer edges: the "
+                f"mesh does not resolve it (a finer mesh may)" if edges < ZONE_EDGES_MIN else "")
+        return CohesiveSolve(mesh, int(d.ndof), path, refused=f"{what} ({path.ended_by}){hint}",
+                             wall_s=wall)
+    try:
+        po = pull_off(path)
+    except ValueError as err:
+        return CohesiveSolve(mesh, int(d.ndof), path, refused=str(err), wall_s=wall)
+    if not all(math.isfinite(v) for v in (po.P_star, po.delta_star, po.a_star)):
+        return CohesiveSolve(mesh, int(d.ndof), path, refused="pull-off not finite", wall_s=wall)
+    return CohesiveSolve(mesh, int(d.ndof), path, po, "", zone_edges(iface, po.a_star, po.c_star),
+                         wall)
+
+
+def zone_edges(iface: Interface, a: float, c: float) -> float:
+    """How many outer edges (of their reference radial extent at a) the zone a < r < c
+    spans (lengths / R)."""
+    r = iface.d.capmesh.nodes[0]
+    r0, r2 = r[iface.edges[0]], r[iface.edges[2]]
+    k = int(np.clip(np.searchsorted(r2, a), 0, len(r2) - 1))
+    return float((c - a) / (r2[k] - r0[k]))
+
+
+def _progress_line(mesh, R_mm, C10_MPa):
+    """A callback printing every 50th state of the path on stderr, in mm and N."""
+    count = [0]
+    print(f"  tracing the path on the {mesh} mesh", file=sys.stderr, flush=True)
+
+    def report(state):
+        count[0] += 1
+        if count[0] % 50 == 0:
+            print(f"  {mesh} mesh: {count[0]} states, delta {length_mm(state.delta, R_mm):+.4f} "
+                  f"mm, P {force_N(state.P, C10_MPa, R_mm):+.4f} N, a "
+                  f"{length_mm(state.a, R_mm):.4f} mm", file=sys.stderr, flush=True)
+    return report

@@ -1,0 +1,118 @@
+"""The cohesive case in the user's units (`solve_cohesive_case`, `case --adhesion dugdale`):
+bad input refused before any computation (one line, exit 2); the Maugis-Dugdale pull-off
+of a solid hemisphere through the whole chain of units (J/m^2, MPa, lambda, N); the exact
+scaling of a shell's answer with R, C10 and gamma, with sigma0 and lambda as two spellings
+of one law; the command's JSON and table; a path that cannot answer is refused, exit 1.
+"""
+import json
+import math
+
+import pytest
+
+from shell_adhesion import cli
+from shell_adhesion.solver import arclength
+from shell_adhesion.solver import maugis_dugdale as md
+from shell_adhesion.study import case as case_api
+from shell_adhesion.study import cohesive_case as cc
+
+BASE = ["case", "--R", "20", "--t", "3", "--h", "20", "--C10", "0.3", "--gamma", "30"]
+DUGDALE = ["--adhesion", "dugdale"]
+
+BAD = [
+    (DUGDALE + ["--sigma0", "0"], "--sigma0: 0 MPa must be > 0"),
+    (DUGDALE + ["--sigma0", "-0.2"], "--sigma0: -0.2 MPa must be > 0"),
+    (DUGDALE + ["--sigma0", "x"], "--sigma0: 'x' must be a number (MPa)"),
+    (DUGDALE + ["--sigma0", "0.1", "--tabor", "1"], "--sigma0/--tabor: give exactly one of "
+                                                    "them with --adhesion dugdale (both given)"),
+    (DUGDALE, "(neither given)"),
+    (["--sigma0", "0.1"], "--sigma0: 0.1 given with --adhesion energy"),
+    (["--adhesion", "energy", "--tabor", "1"], "--tabor: 1 given with --adhesion energy"),
+    (DUGDALE + ["--tabor", "0"], "--tabor: 0 must be > 0"),
+    (DUGDALE + ["--tabor", "inf"], "--tabor"),
+    (DUGDALE + ["--tabor", "20"], "--tabor: 20: outside the supported domain 0.05 <= lambda <= 10"),
+    (DUGDALE + ["--sigma0", "1e-4"], "--sigma0 = 0.0001 MPa gives lambda = 0.000549"),
+    (DUGDALE + ["--tabor", "1", "--interface", "no_slip"], "--interface: no_slip with "
+                                                           "--adhesion dugdale"),
+    (DUGDALE + ["--tabor", "1", "--gamma", "20"], "--gamma: 2 values given"),
+    (DUGDALE[:1] + ["dugdale", "--tabor", "1", "--material", "yeoh", "--C20", "0.01"],
+     "--material: yeoh with --adhesion dugdale"),
+    (DUGDALE + ["--tabor", "1", "--cavity", "sealed"], "--cavity: sealed with --adhesion dugdale"),
+    (DUGDALE + ["--tabor", "1", "--t", "30"], "--t"),      # the shell's own rules still apply
+]
+
+
+@pytest.mark.parametrize("extra, message", BAD, ids=[" ".join(b[0][2:]) or "none" for b in BAD])
+def test_bad_input_is_one_line_and_exit_2_before_any_computation(extra, message, capsys,
+                                                                  monkeypatch):
+    def no_solve(*args, **kwargs):
+        raise AssertionError("a computation started")
+    monkeypatch.setattr(cc, "_solve", no_solve)
+    monkeypatch.setattr(case_api, "solve_case", no_solve)
+    assert cli.main(BASE + extra) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and err.count("\n") == 1 and err.startswith("shell-adhesion: error: ")
+    assert message in err
+
+
+def test_the_api_names_its_arguments():
+    with pytest.raises(cc.InputError, match="sigma0_MPa: 0 MPa must be > 0"):
+        cc.solve_cohesive_case(20, 3, 20, 0.3, 30, sigma0_MPa=0)
+    with pytest.raises(cc.InputError, match="gamma_J_m2: 0 values given"):
+        cc.solve_cohesive_case(20, 3, 20, 0.3, [], tabor=1)
+
+
+def test_hemisphere_pull_off_in_units_follows_maugis_dugdale():
+    # R 20 mm, C10 0.3 MPa, gamma 1 J/m^2: gamma / (C10 R) = 1.7e-4, small strain; the
+    # closed form's P* at lambda 0.3 is -1.8156 pi gamma R (gamma in N/mm here)
+    r = cc.solve_cohesive_case(20, 20, 20, 0.3, 1.0, tabor=0.3, mesh="coarse", error_bars=False)
+    assert not r.refused
+    P = r.to_dict()["pull_off"]["P_star_N"] / (math.pi * 1e-3 * 20)
+    print(f"P*/(pi gamma R) {P:.4f} (Maugis-Dugdale {md.pull_off(0.3).P:.4f})")
+    assert abs(P / md.pull_off(0.3).P - 1) <= 0.02
+    # sigma0 from lambda: lambda = 2 sigma0 (R / (pi gamma K^2))^(1/3), K = 4 E*/3 = 32 C10 / 3
+    K = 32 / 3 * 0.3
+    assert r.input.sigma0_MPa == pytest.approx(0.5 * 0.3 * (math.pi * 1e-3 * K * K / 20) ** (1 / 3),
+                                               rel=1e-12)
+
+
+def test_the_answer_scales_exactly_with_R_C10_and_gamma():
+    # doubling R and C10 and four times gamma keeps gamma / (C10 R); sigma0 twice (it scales
+    # with C10) keeps lambda: the same dimensionless problem, P times 8, lengths times 2
+    one = cc.solve_cohesive_case(20, 3, 20, 0.3, 30, tabor=1.0, mesh="coarse", error_bars=False)
+    two = cc.solve_cohesive_case(40, 6, 40, 0.6, 120, sigma0_MPa=2 * one.input.sigma0_MPa,
+                                 mesh="coarse", error_bars=False)
+    assert two.input.tabor == pytest.approx(1.0, rel=1e-12)
+    p1, p2 = one.to_dict()["pull_off"], two.to_dict()["pull_off"]
+    for name, value in p1.items():
+        if value is None or name.endswith("_error"):
+            continue
+        factor = 8.0 if name.endswith("_N") else 2.0
+        assert p2[name] == pytest.approx(factor * value, rel=1e-6, abs=1e-12), name
+    assert p1["P_star_N"] < 0 and p1["P_star_N"] < p1["P_dagger_N"] < 0
+    assert 0 < p1["a_star_mm"] < p1["c_star_mm"]
+
+
+def test_the_command_prints_json_with_units_and_curves(capsys):
+    assert cli.main(BASE + DUGDALE + ["--tabor", "1", "--mesh", "coarse", "--no-error-bars",
+                                      "--json", "--curves"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["refused"] is None and out["law"]["tabor"] == pytest.approx(1.0)
+    assert out["law"]["delta_c_mm"] == pytest.approx(30e-3 / out["law"]["sigma0_MPa"])
+    po, curves = out["pull_off"], out["curves"]
+    assert set(po) >= {"P_star_N", "delta_star_mm", "a_star_mm", "c_star_mm", "P_dagger_N"}
+    assert len(curves["P_N"]) == len(curves["delta_mm"]) == out["checks"]["states"]
+    assert min(curves["P_N"]) <= po["P_star_N"] + 1e-3 * abs(po["P_star_N"])
+    assert out["checks"]["path_ended_by"] == "left the cohesive range"
+    assert out["checks"]["cohesive_zone_edges"] >= cc.ZONE_EDGES_MIN
+
+
+def test_a_path_that_does_not_turn_is_refused_with_exit_1(capsys, monkeypatch):
+    real = arclength.trace
+
+    def short(*args, **kwargs):
+        return real(*args, settings=arclength.ArcSettings(max_steps=25), **kwargs)
+    monkeypatch.setattr(cc, "trace", short)
+    assert cli.main(BASE + DUGDALE + ["--tabor", "1", "--mesh", "coarse", "--no-error-bars"]) == 1
+    out = capsys.readouterr().out
+    assert "no pull-off: the path did not turn round (step limit: 25 states)" in out
+    assert "fixed load" not in out

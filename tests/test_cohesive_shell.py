@@ -1,0 +1,65 @@
+"""The cohesive pull-off of shells as docs/adhesion-range.md states it: R = h = 20 mm,
+C10 = 0.3 MPa, gamma = 30 J/m^2 (gamma / (C10 R) = 0.005), frictionless, default mesh.
+
+Each stated P* is held within its stated error bar (with a floor of one unit of its last
+printed digit); the energy method's P* beside it likewise.  The base shell's three lambdas
+are `slow` (about 2 minutes); the thickness minimum is `long` (about 10 minutes).
+"""
+import pytest
+
+from shell_adhesion.study.case import solve_case
+from shell_adhesion.study.cohesive_case import solve_cohesive_case
+
+R_MM, C10, GAMMA = 20.0, 0.3, 30.0
+# lambda -> (P* [N], error bar [N]) of the base shell (docs: "The base shell")
+BASE = {0.3: (-2.5283, 0.0016), 1.0: (-2.1751, 0.0094), 2.0: (-2.0999, 0.087)}
+ENERGY_BASE = (-1.8460, 0.0077)
+# t/R -> lambda 1's P* and the energy method's (docs: "Pull-off against thickness")
+THICKNESS = {0.075: ((-2.243, 0.033), (-2.043, 0.017)), 0.1: ((-1.849, 0.011), (-1.618, 0.016)),
+             0.15: ((-2.175, 0.0094), (-1.846, 0.0077))}
+
+
+def _shell(t_over_R):
+    return dict(R_mm=R_MM, t_mm=t_over_R * R_MM, h_mm=R_MM, C10_MPa=C10, gamma_J_m2=GAMMA)
+
+
+def _cohesive_P(t_over_R, lam):
+    r = solve_cohesive_case(**_shell(t_over_R), tabor=lam, error_bars=False)
+    assert not r.refused, r.refused
+    return r.to_dict()["pull_off"]["P_star_N"]
+
+
+def _energy_P(t_over_R):
+    e = solve_case(**_shell(t_over_R), interface="frictionless", progress=False,
+                   error_bars=False)
+    return e.to_dict()["pull_off"][0]["fixed_load"]["P_N"]
+
+
+def _within(name, value, stated, digits=4):
+    P, err = stated
+    bound = max(err, 10.0 ** -digits)
+    assert abs(value - P) <= bound, f"{name}: {value:.5f} N, the docs state {P} +- {err} N"
+
+
+@pytest.mark.slow
+def test_base_shell_pull_off_approaches_the_energy_method_as_lambda_grows():
+    energy = _energy_P(0.15)
+    _within("energy method", energy, ENERGY_BASE)
+    ratios = []
+    for lam, stated in BASE.items():
+        P = _cohesive_P(0.15, lam)
+        _within(f"lambda {lam}", P, stated)
+        ratios.append(P / energy)
+    print("P*/energy method's:", [f"{r:.3f}" for r in ratios])
+    # the finite range adds to the zero-range pull-off, less as lambda grows
+    assert all(r > 1 for r in ratios) and ratios == sorted(ratios, reverse=True)
+
+
+@pytest.mark.long
+def test_the_pull_off_is_least_near_t_over_R_0_1():
+    P = {t: (_cohesive_P(t, 1.0), _energy_P(t)) for t in THICKNESS}
+    for t, (coh, energy) in P.items():
+        _within(f"t/R {t}, lambda 1", coh, THICKNESS[t][0], 3)
+        _within(f"t/R {t}, energy method", energy, THICKNESS[t][1], 3)
+    for k in (0, 1):        # least |P*| at t/R = 0.1, for the cohesive and the energy method
+        assert min(P, key=lambda t: abs(P[t][k])) == 0.1

@@ -116,3 +116,17 @@ def test_a_path_that_does_not_turn_is_refused_with_exit_1(capsys, monkeypatch):
     out = capsys.readouterr().out
     assert "no pull-off: the path did not turn round (step limit: 25 states)" in out
     assert "fixed load" not in out
+
+
+def test_an_unresolved_zone_is_said_before_the_solve(monkeypatch):
+    # lambda 5 on the coarse mesh: the zone Maugis expects (0.0033 R = 0.065 mm for the base
+    # shell's gamma / (C10 R)) is 0.4 of the coarse apex element (0.008 R)
+    assert cc.zone_estimate(0.005, 5.0) == pytest.approx(
+        (md.pull_off(5.0).m - 1) * md.pull_off(5.0).A * (math.pi * 0.005 / (32 / 3)) ** (1 / 3))
+    real = arclength.trace
+    monkeypatch.setattr(cc, "trace", lambda *a, **k: real(
+        *a, settings=arclength.ArcSettings(max_steps=25), **k))
+    r = cc.solve_cohesive_case(20, 3, 20, 0.3, 30, tabor=5.0, mesh="coarse")
+    notes = r.to_dict()["checks"]["notes"]
+    assert r.refused and r.coarser is None      # no second mesh for a refused path
+    assert any("spans 0.41 elements of the coarse mesh" in n for n in notes), notes

@@ -79,3 +79,14 @@ def test_bad_input():
             md.pull_off(bad)
     with pytest.raises(ValueError, match="m = c/a"):
         md.state(1.0, 1.0)
+
+
+def test_delta_star_is_ill_conditioned_at_lambda_1():
+    """Why delta* of a computed curve is not checked against the closed form (the docs say
+    so): near the fixed-load pull-off P(Dbar) is flat, so a 1 % change of P moves Dbar* by
+    more than 0.1 (over 20 % of Dbar* = -0.484)."""
+    star = md.pull_off(1.0)
+    near = [md.state(1.0, star.m + dm) for dm in (-0.05, 0.05)]
+    assert all(abs(s.P / star.P - 1) <= 0.011 for s in near)
+    assert all(abs(s.D - star.D) >= 0.09 for s in near)
+    assert abs(near[0].D - near[1].D) >= 0.2 * abs(star.D)

@@ -228,10 +228,19 @@ def solve_checked(inp: CohesiveInput, error_bars=True, progress=False) -> Cohesi
                delta_max=delta_bound(cap) if c.delta_max_mm is None else c.delta_max_mm / c.R_mm,
                a_turn=None if c.delta_max_mm is not None else TURN * a_need)
     units = (c.R_mm, c.C10_MPa) if progress else None
+    notes = []
+    zone = zone_estimate(g, inp.tabor)
+    h = mesh_spec(c.mesh).h_apex
+    if zone < ZONE_EDGES_MIN * h:
+        notes.append(f"the cohesive zone expected at the pull-off (a sphere's, Maugis: "
+                     f"{zone * c.R_mm:.3g} mm) spans {zone / h:.2g} elements of the {c.mesh} "
+                     f"mesh ({h * c.R_mm:.3g} mm): the path may not turn or leave the range "
+                     f"(a finer mesh resolves it)")
+        if progress:
+            print(f"  note: {notes[-1]}", file=sys.stderr, flush=True)
     solve = _solve(cap, inp.law, c.mesh, fit, units)
     coarser = (_solve(cap, inp.law, coarser_mesh(c.mesh), fit, units)
                if error_bars and not solve.refused else None)
-    notes = []
     if not solve.refused and solve.zone_edges < ZONE_EDGES_MIN:
         notes.append(f"the cohesive zone at the pull-off spans {solve.zone_edges:.2g} outer "
                      f"edges (< {ZONE_EDGES_MIN:g}): not resolved by the {c.mesh} mesh; "
@@ -274,6 +283,13 @@ def _solve(cap, law, mesh, fit, units=None) -> CohesiveSolve:
         return CohesiveSolve(mesh, int(d.ndof), path, refused="pull-off not finite", wall_s=wall)
     return CohesiveSolve(mesh, int(d.ndof), path, po, "", zone_edges(iface, po.a_star, po.c_star),
                          wall)
+
+
+def zone_estimate(gamma_hat: float, tabor: float) -> float:
+    """The cohesive zone c - a / R at a solid sphere's pull-off (Maugis-Dugdale:
+    (m - 1) A in Maugis' length (pi gamma R^2 / K)^(1/3)); a shell's is of the same order."""
+    star = md.pull_off(tabor)
+    return (star.m - 1.0) * star.A * (math.pi * gamma_hat / K_OVER_C10) ** (1.0 / 3.0)
 
 
 def zone_edges(iface: Interface, a: float, c: float) -> float:

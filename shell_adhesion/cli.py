@@ -101,6 +101,16 @@ def _number(flag, text, unit):
         raise InputError(f"{flag}: {text!r} must be a number ({unit})") from None
 
 
+def _solid(ns) -> dict:
+    """The material coefficients and the cavity of `case` as numbers (flags checked)."""
+    solid = {arg: _number(f"--{flag}", getattr(ns, flag), unit)
+             for flag, arg, unit in MATERIAL_FLAGS if getattr(ns, flag) is not None}
+    solid.update({arg: _number(CASE_FLAGS[arg], getattr(ns, arg), unit)
+                  for arg, unit in CAVITY_FLAGS if getattr(ns, arg) is not None},
+                 cavity=ns.cavity)
+    return solid
+
+
 def _run_case(ns):
     if ns.adhesion == "dugdale":
         return _run_cohesive_case(ns)
@@ -109,11 +119,7 @@ def _run_case(ns):
             raise InputError(f"--{flag}: {getattr(ns, flag)} given with --adhesion energy: "
                              f"a cohesive strength needs --adhesion dugdale")
     ns.interface = ns.interface or "no_slip"
-    solid = {arg: _number(f"--{flag}", getattr(ns, flag), unit)
-             for flag, arg, unit in MATERIAL_FLAGS if getattr(ns, flag) is not None}
-    solid.update({arg: _number(CASE_FLAGS[arg], getattr(ns, arg), unit)
-                  for arg, unit in CAVITY_FLAGS if getattr(ns, arg) is not None},
-                 cavity=ns.cavity)
+    solid = _solid(ns)
     inp = case_input(_number("--R", ns.R, "mm"), _number("--t", ns.t, "mm"),
                      _number("--h", ns.h, "mm"), _number("--C10", ns.C10, "MPa"),
                      [_number("--gamma", g, "J/m^2") for g in ns.gamma or []],
@@ -137,11 +143,7 @@ def _run_cohesive_case(ns):
     """`case --adhesion dugdale`: the Maugis-Dugdale pull-off (study.cohesive_case)."""
     from shell_adhesion.study import cohesive_case
 
-    solid = {arg: _number(f"--{flag}", getattr(ns, flag), unit)
-             for flag, arg, unit in MATERIAL_FLAGS if getattr(ns, flag) is not None}
-    solid.update({arg: _number(CASE_FLAGS[arg], getattr(ns, arg), unit)
-                  for arg, unit in CAVITY_FLAGS if getattr(ns, arg) is not None},
-                 cavity=ns.cavity, material=ns.material)
+    solid = dict(_solid(ns), material=ns.material)
     inp = cohesive_case.cohesive_input(
         _number("--R", ns.R, "mm"), _number("--t", ns.t, "mm"), _number("--h", ns.h, "mm"),
         _number("--C10", ns.C10, "MPa"),

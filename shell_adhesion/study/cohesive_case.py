@@ -32,6 +32,7 @@ from shell_adhesion.solver.forms import discretise
 from shell_adhesion.solver.geometry import Cap, delta_bound
 from shell_adhesion.solver.material import NEO_HOOKE
 from shell_adhesion.solver.mesh import cap_mesh, coarser_mesh, mesh_spec
+from shell_adhesion.solver.quality import Quality, quality, worst
 from shell_adhesion.solver.request import TURN, a_star_estimate, even_arc
 from shell_adhesion.solver.scaling import check_finite, force_N, gamma_hat, length_mm
 
@@ -131,6 +132,7 @@ class CohesiveSolve:
     refused: str = ""
     zone_edges: float = math.nan      # outer edges across the cohesive zone at P*
     wall_s: float = math.nan
+    quality: Quality = None           # the worst element quality over the retraction
 
 
 @dataclass(frozen=True, eq=False)
@@ -160,7 +162,9 @@ class CohesiveCaseResult:
             out["pull_off"] = self._pull_off_dict()
         s = self.solve
         out["checks"] = dict(path_ended_by=s.path.ended_by, states=len(s.path.states),
-                             cohesive_zone_edges=_clean(s.zone_edges), notes=list(self.notes))
+                             cohesive_zone_edges=_clean(s.zone_edges),
+                             quality=None if s.quality is None else s.quality.as_dict(),
+                             notes=list(self.notes))
         out["provenance"] = self.provenance
         if curves:
             out["curves"] = dict(
@@ -281,8 +285,13 @@ def _solve(cap, law, mesh, fit, units=None) -> CohesiveSolve:
         return CohesiveSolve(mesh, int(d.ndof), path, refused=str(err), wall_s=wall)
     if not all(math.isfinite(v) for v in (po.P_star, po.delta_star, po.a_star)):
         return CohesiveSolve(mesh, int(d.ndof), path, refused="pull-off not finite", wall_s=wall)
+    # the elements along the retraction (folding, distortion, pointwise J): solver.quality
+    q = worst(*(quality(d, state.x) for state in path.states[path.turn:]))
+    if q.problem():
+        return CohesiveSolve(mesh, int(d.ndof), path, refused=f"retraction: {q.problem()}",
+                             wall_s=wall, quality=q)
     return CohesiveSolve(mesh, int(d.ndof), path, po, "", zone_edges(iface, po.a_star, po.c_star),
-                         wall)
+                         wall, q)
 
 
 def zone_estimate(gamma_hat: float, tabor: float) -> float:

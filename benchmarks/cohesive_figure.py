@@ -4,6 +4,7 @@ t/R.
 
     python benchmarks/cohesive_figure.py paths [MESH] [OUT.png]
     python benchmarks/cohesive_figure.py thickness docs/figures/cohesive_thickness.csv [OUT.png]
+    python benchmarks/cohesive_figure.py lambda docs/figures/cohesive_thickness.csv [OUT.png]
 
 Base shell R = h = 20 mm, t = 3 mm, C10 = 0.3 MPa, gamma = 30 J/m^2, frictionless.
 """
@@ -15,11 +16,14 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+import numpy as np  # noqa: E402
+
+from shell_adhesion.solver import maugis_dugdale as md  # noqa: E402
 from shell_adhesion.study.case import solve_case  # noqa: E402
 from shell_adhesion.study.cohesive_case import solve_cohesive_case  # noqa: E402
 
 SHELL = dict(R_mm=20.0, t_mm=3.0, h_mm=20.0, C10_MPa=0.3, gamma_J_m2=30.0)
-LAMBDAS = (0.3, 1.0, 2.0)
+LAMBDAS = (0.3, 1.0, 2.0, 3.0)
 
 
 def paths(mesh="default", out="docs/figures/cohesive_paths.png"):
@@ -82,5 +86,38 @@ def thickness(table, out="docs/figures/cohesive_thickness.png"):
     print(f"wrote {out}")
 
 
+def lam_map(table, out="docs/figures/cohesive_lambda.png", shells=(0.05, 0.1, 0.15, 0.3, 1.0)):
+    """P* / (pi gamma R) against lambda for the shells of the thickness table, beside the
+    Maugis-Dugdale solid sphere (small strain) and each shell's energy method."""
+    rows = [r for r in csv.DictReader(open(table)) if r["P_star_N"]]
+    unit = np.pi * SHELL["gamma_J_m2"] * 1e-3 * SHELL["R_mm"]          # pi gamma R [N]
+    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    for i, t in enumerate(shells):
+        pts = sorted((float(r["tabor"]), float(r["P_star_N"]) / unit,
+                      float(r["P_star_N_error"] or 0) / unit)
+                     for r in rows if float(r["t_over_R"]) == t)
+        if not pts:
+            continue
+        lam, P, e = zip(*pts)
+        line = ax.errorbar(lam, P, yerr=e, marker="o", ms=4, lw=1.2, capsize=2,
+                           label=f"t/R = {t:g}" + (" (solid)" if t == 1 else ""))
+        energy = next((float(r["energy_P_star_N"]) for r in rows
+                       if float(r["t_over_R"]) == t and r["energy_P_star_N"]), None)
+        if energy is not None:
+            ax.axhline(energy / unit, color=line[0].get_color(), ls=":", lw=0.9)
+    grid = np.geomspace(0.05, 3.0, 40)
+    ax.plot(grid, [md.pull_off(v).P for v in grid], "k--", lw=1.0,
+            label="Maugis-Dugdale, sphere (small strain)")
+    ax.set_xscale("log")
+    ax.set_xlabel("Tabor-Maugis parameter lambda")
+    ax.set_ylabel("P* / (pi gamma R)")
+    ax.set_title("R = h = 20 mm, C10 = 0.3 MPa, gamma = 30 J/m^2, frictionless; dotted: "
+                 "energy method", fontsize=9)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out, dpi=150)
+    print(f"wrote {out}")
+
+
 if __name__ == "__main__":
-    {"paths": paths, "thickness": thickness}[sys.argv[1]](*sys.argv[2:])
+    {"paths": paths, "thickness": thickness, "lambda": lam_map}[sys.argv[1]](*sys.argv[2:])

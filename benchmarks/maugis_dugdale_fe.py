@@ -4,7 +4,9 @@
 
 Traces the whole path (solver.arclength) for gamma / (C10 R) = 1.7e-4 and prints the
 pull-off in Maugis' units beside solver.maugis_dugdale's, the states, Newton iterations
-and the wall time.
+and the wall time.  MESH "coarse+zone" (or any mesh name + "+zone"): that mesh refined at
+the contact as `shell-adhesion case --adhesion dugdale` refines it
+(study.cohesive_case.fitted_spec: ZONE_ELEMENTS elements across Maugis' zone).
 """
 import sys
 import time
@@ -14,7 +16,8 @@ from shell_adhesion.solver.arclength import pull_off, trace
 from shell_adhesion.solver.cohesive import CohesiveLaw, Interface
 from shell_adhesion.solver.forms import discretise
 from shell_adhesion.solver.geometry import Cap
-from shell_adhesion.solver.mesh import cap_mesh, mesh_spec
+from shell_adhesion.solver.mesh import cap_mesh
+from shell_adhesion.study.cohesive_case import fitted_spec, zone_estimate, zone_refinement
 
 GAMMA_HAT, K_HAT, DELTA_MAX = 1.7e-4, 32 / 3, 2e-3
 
@@ -22,7 +25,9 @@ if __name__ == "__main__":
     lam = float(sys.argv[1])
     mesh = sys.argv[2] if len(sys.argv) > 2 else "coarse"
     ramp = float(sys.argv[3]) if len(sys.argv) > 3 else 0.5
-    d = discretise(cap_mesh(Cap(1.0, 1.0), mesh_spec(mesh)))
+    name, zone = mesh.removesuffix("+zone"), mesh.endswith("+zone")
+    refine = zone_refinement(zone_estimate(GAMMA_HAT, lam), name) if zone else 1.0
+    d = discretise(cap_mesh(Cap(1.0, 1.0), fitted_spec(name, dict(uniform=0.15, refine=refine))))
     law = CohesiveLaw(md.sigma0_of(lam, GAMMA_HAT, 1.0, K_HAT), GAMMA_HAT, ramp)
     t0 = time.perf_counter()
     path = trace(Interface(d, law), DELTA_MAX)

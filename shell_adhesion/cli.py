@@ -483,7 +483,7 @@ def _parser():
                            "gamma / sigma0)")
     case.add_argument("--tabor", default=None,
                       help="with --adhesion dugdale: Tabor-Maugis parameter lambda instead "
-                           "of --sigma0 (0.05 DMT-like to 10 JKR-like)")
+                           "of --sigma0 (0.05 DMT-like to 3, near JKR)")
     case.add_argument("--mesh", choices=MESHES, default="default", help="mesh density")
     case.add_argument("--cavity", default="open", metavar="MODE",
                       help="open (default), pressure (prescribed gauge --p-kPa) or sealed "

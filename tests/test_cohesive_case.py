@@ -7,11 +7,13 @@ of one law; the command's JSON and table; a path that cannot answer is refused, 
 import json
 import math
 
+import numpy as np
 import pytest
 
 from shell_adhesion import cli
 from shell_adhesion.solver import arclength
 from shell_adhesion.solver import maugis_dugdale as md
+from shell_adhesion.solver.mesh import mesh_spec
 from shell_adhesion.study import case as case_api
 from shell_adhesion.study import cohesive_case as cc
 
@@ -29,7 +31,7 @@ BAD = [
     (["--adhesion", "energy", "--tabor", "1"], "--tabor: 1 given with --adhesion energy"),
     (DUGDALE + ["--tabor", "0"], "--tabor: 0 must be > 0"),
     (DUGDALE + ["--tabor", "inf"], "--tabor"),
-    (DUGDALE + ["--tabor", "20"], "--tabor: 20: outside the supported domain 0.05 <= lambda <= 10"),
+    (DUGDALE + ["--tabor", "5"], "--tabor: 5: outside the supported domain 0.05 <= lambda <= 3"),
     (DUGDALE + ["--sigma0", "1e-4"], "--sigma0 = 0.0001 MPa gives lambda = 0.000549"),
     (DUGDALE + ["--tabor", "1", "--interface", "no_slip"], "--interface: no_slip with "
                                                            "--adhesion dugdale"),
@@ -112,7 +114,7 @@ def test_a_path_that_does_not_turn_is_refused_with_exit_1(capsys, monkeypatch):
     real = arclength.trace
 
     def short(*args, **kwargs):
-        return real(*args, settings=arclength.ArcSettings(max_steps=25), **kwargs)
+        return real(*args, **{**kwargs, "settings": arclength.ArcSettings(max_steps=25)})
     monkeypatch.setattr(cc, "trace", short)
     assert cli.main(BASE + DUGDALE + ["--tabor", "1", "--mesh", "coarse", "--no-error-bars"]) == 1
     out = capsys.readouterr().out
@@ -120,14 +122,36 @@ def test_a_path_that_does_not_turn_is_refused_with_exit_1(capsys, monkeypatch):
     assert "fixed load" not in out
 
 
-def test_an_unresolved_zone_is_said_before_the_solve(monkeypatch):
-    # lambda 5 on the coarse mesh: the zone Maugis expects at a sphere's pull-off (0.0033 R
-    # = 0.065 mm for the base shell's gamma / (C10 R)) is 0.4 of the coarse apex element
-    # (0.008 R); the slow test holds the estimate against a traced zone (lambda 2)
+def test_the_mesh_is_fitted_to_the_zone_before_the_solve(monkeypatch):
+    # lambda 3 on the coarse mesh: the zone Maugis expects at a sphere's pull-off (0.0085 R
+    # = 0.17 mm for the base shell's gamma / (C10 R)) is 1.06 coarse apex elements (0.008
+    # R); the solve's mesh has ZONE_ELEMENTS elements across it (the slow test holds the
+    # estimate against a traced zone, lambda 2)
     real = arclength.trace
-    monkeypatch.setattr(cc, "trace", lambda *a, **k: real(
-        *a, settings=arclength.ArcSettings(max_steps=25), **k))
-    r = cc.solve_cohesive_case(20, 3, 20, 0.3, 30, tabor=5.0, mesh="coarse")
-    notes = r.to_dict()["checks"]["notes"]
+    seen = []
+
+    def short(iface, *a, **k):
+        seen.append(iface.d.capmesh)
+        return real(iface, *a, **{**k, "settings": arclength.ArcSettings(max_steps=25)})
+    monkeypatch.setattr(cc, "trace", short)
+    r = cc.solve_cohesive_case(20, 3, 20, 0.3, 30, tabor=3.0, mesh="coarse")
+    zone_mm = cc.zone_estimate(0.005, 3.0) * 20
+    h_mm = r.provenance["apex_element_mm"]
+    assert abs(zone_mm / h_mm - cc.ZONE_ELEMENTS) < 1e-9
+    assert any(f"refined at the contact to {h_mm:.3g} mm" in n for n in r.notes), r.notes
+    # the apex element of the mesh actually solved (mesh.graded rescales the sizes to fit
+    # the meridian: a few per cent)
+    nodes = seen[0].nodes[:, seen[0].outer]
+    assert abs(np.hypot(*(nodes[:, 2] - nodes[:, 0])) * 20 - h_mm) < 0.05 * h_mm
     assert r.refused and r.coarser is None      # no second mesh for a refused path
-    assert any("spans 0.41 elements of the coarse mesh" in n for n in notes), notes
+
+
+def test_the_fitted_family_keeps_its_ratio():
+    fit = dict(uniform=0.15, refine=0.3)
+    sizes = {m: cc.fitted_spec(m, fit) for m in ("fine", "default", "coarse")}
+    assert sizes["coarse"].h_apex == pytest.approx(2 * sizes["default"].h_apex, rel=1e-12)
+    assert sizes["default"].h_apex == pytest.approx(2 * sizes["fine"].h_apex, rel=1e-12)
+    assert sizes["default"].layer0 == pytest.approx(0.3 * mesh_spec("default").layer0, rel=1e-12)
+    # a zone the named mesh resolves leaves it as it is
+    assert cc.zone_refinement(1.0, "default") == 1.0
+    assert cc.fitted_spec("default", dict(uniform=0.15, refine=1.0)) == mesh_spec("default", 0.15)

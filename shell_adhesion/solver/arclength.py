@@ -45,7 +45,8 @@ class ArcSettings:
     ds_min: float = 1e-10      # step-length floor: a failure below it ends the path
     dx_max: float = 0.25       # largest change of any outer gap per step, in delta_c
     dx_travel: float = 0.1     # ... and in delta_max (resolves P where delta_c is long)
-    grow: float = 1.5          # step growth after an easy step (<= 4 iterations)
+    grow: float = 1.5          # step growth after an easy step
+    easy: int = 4              # ... one of at most this many Newton iterations
     cos_min: float = 0.9       # least cosine between the tangents of consecutive states
 
 
@@ -196,7 +197,7 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
         states.append(_state(cn, x, delta, K, r, t, it))
         if progress is not None:
             progress(states[-1])
-        if it <= 4:
+        if it <= s.easy:
             ds *= s.grow
         # (a_turn only where the approach advances: behind the jump-in, delta falls)
         if turn < 0 and (delta >= delta_max

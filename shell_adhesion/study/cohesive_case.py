@@ -9,12 +9,14 @@ fixed-load pull-off (least P) and the fixed-grips one (the fold in delta), with 
 contact radius a (gap 0) and the cohesive-zone radius c (gap delta_c).  The strength is
 given as sigma0 [MPa] or as the Tabor-Maugis parameter lambda = 2 sigma0 (R / (pi gamma
 K^2))^(1/3), K = 4 E* / 3, E* = 8 C10 (the solid sphere's; for a shell it is a measure of
-the range against R).  Error bars from the next coarser mesh (`solver.error_bars`).
+the range against R).  The named mesh is refined at the contact where its apex elements
+are too large for the cohesive zone Maugis expects (`zone_refinement`, `fitted_spec`).
+Error bars from the next coarser mesh (`solver.error_bars`), refined by the same factor.
 
 Units: R, t, h, delta, a, c in mm; C10 and sigma0 in MPa; gamma in J/m^2; P in N (> 0
 compression; pull-off P < 0); delta > 0 approach.
 """
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 import json
 import math
 import sys
@@ -25,7 +27,7 @@ import numpy as np
 from shell_adhesion import __version__
 from shell_adhesion.errors import InputError
 from shell_adhesion.solver import maugis_dugdale as md
-from shell_adhesion.solver.arclength import ArcPath, CohesivePullOff, pull_off, trace
+from shell_adhesion.solver.arclength import ArcPath, ArcSettings, CohesivePullOff, pull_off, trace
 from shell_adhesion.solver.cohesive import TABOR_RANGE, CohesiveLaw, Interface
 from shell_adhesion.solver.error_bars import error_bar
 from shell_adhesion.solver.forms import discretise
@@ -41,6 +43,15 @@ from .case_input import API_NAMES, CaseInput, case_input
 ADHESIONS = ("energy", "dugdale")
 K_OVER_C10 = 32.0 / 3.0       # K = 4 E* / 3 with E* = 8 C10 (incompressible neo-Hookean)
 ZONE_EDGES_MIN = 2.0          # fewer outer edges across the cohesive zone: a warning
+# outer elements across the cohesive zone Maugis expects at the pull-off on the requested
+# mesh (its next coarser mesh, the error bar's, has half as many): where the named mesh's
+# apex elements are larger, its sizes at the contact are scaled down to this
+ZONE_ELEMENTS = 4.0
+# on a mesh so refined the states are spent crossing the zone's elements, at 5-6 Newton
+# iterations each: the step grows after up to 6 (base shell, lambda 3: with 4, no turn in
+# 3000 states).  Where the named mesh is kept, 4 (lambda 0.3: growing after 6 sampled P
+# coarsely near P*, its error bar 0.0016 -> 0.03 N)
+REFINED_SETTINGS = ArcSettings(easy=6)
 COHESIVE_NAMES = dict(sigma0_MPa="sigma0_MPa", tabor="tabor", adhesion="adhesion")
 # the pull-off values: name, dimensionless field of CohesivePullOff, unit
 PULL_OFF_FIELDS = (("P_star_N", "P_star", "N"), ("delta_star_mm", "delta_star", "mm"),
@@ -234,12 +245,12 @@ def solve_checked(inp: CohesiveInput, error_bars=True, progress=False) -> Cohesi
     units = (c.R_mm, c.C10_MPa) if progress else None
     notes = []
     zone = zone_estimate(g, inp.tabor)
-    h = mesh_spec(c.mesh).h_apex
-    if zone < ZONE_EDGES_MIN * h:
-        notes.append(f"the cohesive zone expected at the pull-off (a sphere's, Maugis: "
-                     f"{zone * c.R_mm:.3g} mm) spans {zone / h:.2g} elements of the {c.mesh} "
-                     f"mesh ({h * c.R_mm:.3g} mm): the path may not turn or leave the range "
-                     f"(a finer mesh resolves it)")
+    fit["refine"] = zone_refinement(zone, c.mesh)
+    if fit["refine"] < 1.0:
+        h = fitted_spec(c.mesh, fit).h_apex
+        notes.append(f"the {c.mesh} mesh is refined at the contact to {h * c.R_mm:.3g} mm "
+                     f"(x {fit['refine']:.2g}): {ZONE_ELEMENTS:g} elements across the cohesive "
+                     f"zone expected at the pull-off (a sphere's, Maugis: {zone * c.R_mm:.3g} mm)")
         if progress:
             print(f"  note: {notes[-1]}", file=sys.stderr, flush=True)
     solve = _solve(cap, inp.law, c.mesh, fit, units)
@@ -255,7 +266,9 @@ def solve_checked(inp: CohesiveInput, error_bars=True, progress=False) -> Cohesi
     prov = dict(version=__version__, mesh=c.mesh, dofs=solve.ndof,
                 states=len(solve.path.states),
                 newton_iterations=int(solve.path.timer.newton_iterations), wall_s=solve.wall_s,
-                even_arc=fit["uniform"], delta_max_mm=fit["delta_max"] * c.R_mm,
+                even_arc=fit["uniform"], zone_refinement=fit["refine"],
+                apex_element_mm=fitted_spec(c.mesh, fit).h_apex * c.R_mm,
+                delta_max_mm=fit["delta_max"] * c.R_mm,
                 a_turn_mm=None if fit["a_turn"] is None else fit["a_turn"] * c.R_mm)
     if coarser is not None:
         prov.update(coarser_mesh=coarser.mesh, coarser_wall_s=coarser.wall_s)
@@ -263,13 +276,15 @@ def solve_checked(inp: CohesiveInput, error_bars=True, progress=False) -> Cohesi
 
 
 def _solve(cap, law, mesh, fit, units=None) -> CohesiveSolve:
-    """Trace the path on `mesh` and read its pull-off; `units` (R_mm, C10_MPa): report
-    progress in them."""
+    """Trace the path on `mesh` (fitted to the zone: `fitted_spec`) and read its pull-off;
+    `units` (R_mm, C10_MPa): report progress in them."""
     t0 = time.perf_counter()
-    d = discretise(cap_mesh(cap, mesh_spec(mesh, fit["uniform"])))
+    d = discretise(cap_mesh(cap, fitted_spec(mesh, fit)))
     iface = Interface(d, law)
     report = None if units is None else _progress_line(mesh, *units)
-    path = trace(iface, fit["delta_max"], progress=report, a_turn=fit["a_turn"])
+    settings = REFINED_SETTINGS if fit.get("refine", 1.0) < 1.0 else ArcSettings()
+    path = trace(iface, fit["delta_max"], settings=settings, progress=report,
+                 a_turn=fit["a_turn"])
     wall = time.perf_counter() - t0
     if path.turn < 0 or path.ended_by != "left the cohesive range":
         what = "did not turn round" if path.turn < 0 else "ended before leaving the cohesive range"
@@ -292,6 +307,21 @@ def _solve(cap, law, mesh, fit, units=None) -> CohesiveSolve:
                              wall_s=wall, quality=q)
     return CohesiveSolve(mesh, int(d.ndof), path, po, "", zone_edges(iface, po.a_star, po.c_star),
                          wall, q)
+
+
+def zone_refinement(zone: float, mesh: str) -> float:
+    """The factor (<= 1) on `mesh`'s element sizes at the contact that puts ZONE_ELEMENTS
+    apex elements across a cohesive zone of `zone` / R."""
+    return min(1.0, zone / (ZONE_ELEMENTS * mesh_spec(mesh).h_apex))
+
+
+def fitted_spec(mesh: str, fit: dict):
+    """The mesh `mesh` evenly meshed out to fit["uniform"] of arc / R, its apex element and
+    first layer scaled by fit["refine"] (the same factor on every mesh of the family, so
+    the next coarser mesh keeps half the resolution)."""
+    spec = mesh_spec(mesh, fit["uniform"])
+    f = fit.get("refine", 1.0)
+    return replace(spec, h_apex=spec.h_apex * f, layer0=spec.layer0 * f)
 
 
 def zone_estimate(gamma_hat: float, tabor: float) -> float:

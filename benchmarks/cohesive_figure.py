@@ -92,7 +92,7 @@ def lam_map(table, out="docs/figures/cohesive_lambda.png", shells=(0.05, 0.1, 0.
     rows = [r for r in csv.DictReader(open(table)) if r["P_star_N"]]
     unit = np.pi * SHELL["gamma_J_m2"] * 1e-3 * SHELL["R_mm"]          # pi gamma R [N]
     fig, ax = plt.subplots(figsize=(6.4, 4.4))
-    for i, t in enumerate(shells):
+    for t in shells:
         pts = sorted((float(r["tabor"]), float(r["P_star_N"]) / unit,
                       float(r["P_star_N_error"] or 0) / unit)
                      for r in rows if float(r["t_over_R"]) == t)

@@ -27,7 +27,7 @@ if __name__ == "__main__":
     ramp = float(sys.argv[3]) if len(sys.argv) > 3 else 0.5
     name, zone = mesh.removesuffix("+zone"), mesh.endswith("+zone")
     refine = zone_refinement(zone_estimate(GAMMA_HAT, lam), name) if zone else 1.0
-    d = discretise(cap_mesh(Cap(1.0, 1.0), fitted_spec(name, dict(uniform=0.15, refine=refine))))
+    d = discretise(cap_mesh(Cap(1.0, 1.0), fitted_spec(name, dict(uniform=None, refine=refine))))
     law = CohesiveLaw(md.sigma0_of(lam, GAMMA_HAT, 1.0, K_HAT), GAMMA_HAT, ramp)
     t0 = time.perf_counter()
     path = trace(Interface(d, law), DELTA_MAX)

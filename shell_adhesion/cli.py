@@ -111,6 +111,14 @@ def _solid(ns) -> dict:
     return solid
 
 
+def _shell(ns) -> tuple:
+    """R, t, h [mm], C10 [MPa], the gammas [J/m^2] and delta_max [mm] (None) of `case`."""
+    return (_number("--R", ns.R, "mm"), _number("--t", ns.t, "mm"), _number("--h", ns.h, "mm"),
+            _number("--C10", ns.C10, "MPa"),
+            [_number("--gamma", g, "J/m^2") for g in ns.gamma or []],
+            None if ns.delta_max is None else _number("--delta-max", ns.delta_max, "mm"))
+
+
 def _run_case(ns):
     if ns.adhesion == "dugdale":
         return _run_cohesive_case(ns)
@@ -120,11 +128,8 @@ def _run_case(ns):
                              f"a cohesive strength needs --adhesion dugdale")
     ns.interface = ns.interface or "no_slip"
     solid = _solid(ns)
-    inp = case_input(_number("--R", ns.R, "mm"), _number("--t", ns.t, "mm"),
-                     _number("--h", ns.h, "mm"), _number("--C10", ns.C10, "MPa"),
-                     [_number("--gamma", g, "J/m^2") for g in ns.gamma or []],
-                     None if ns.delta_max is None else _number("--delta-max", ns.delta_max, "mm"),
-                     ns.interface, ns.mesh, names=CASE_FLAGS, material=ns.material, **solid)
+    inp = case_input(*_shell(ns), ns.interface, ns.mesh, names=CASE_FLAGS,
+                     material=ns.material, **solid)
     try:
         result = case_api.solve_case(inp.R_mm, inp.t_mm, inp.h_mm, inp.C10_MPa, inp.gamma_J_m2,
                                      delta_max_mm=inp.delta_max_mm, interface=inp.interface,
@@ -144,14 +149,12 @@ def _run_cohesive_case(ns):
     from shell_adhesion.study import cohesive_case
 
     solid = dict(_solid(ns), material=ns.material)
+    R, t, h, C10, gammas, delta_max = _shell(ns)
     inp = cohesive_case.cohesive_input(
-        _number("--R", ns.R, "mm"), _number("--t", ns.t, "mm"), _number("--h", ns.h, "mm"),
-        _number("--C10", ns.C10, "MPa"),
-        [_number("--gamma", g, "J/m^2") for g in ns.gamma or []],
+        R, t, h, C10, gammas,
         None if ns.sigma0 is None else _number("--sigma0", ns.sigma0, "MPa"),
         None if ns.tabor is None else _number("--tabor", ns.tabor, "1"),
-        None if ns.delta_max is None else _number("--delta-max", ns.delta_max, "mm"),
-        ns.interface or "frictionless", ns.mesh, names=COHESIVE_FLAGS, **solid)
+        delta_max, ns.interface or "frictionless", ns.mesh, names=COHESIVE_FLAGS, **solid)
     result = cohesive_case.solve_checked(inp, error_bars=not ns.no_error_bars,
                                          progress=not ns.json)
     if ns.json:

@@ -4,7 +4,7 @@ C10 = 0.3 MPa, gamma = 30 J/m^2 (gamma / (C10 R) = 0.005), frictionless, default
 Each stated P* is held within its stated error bar (with a floor of one unit of its last
 printed digit); the energy method's P* beside it likewise.  The base shell's three lambdas
 are `slow` (about 2 minutes); the thickness minimum and lambda = 3 are `long` (about 10
-minutes each).
+minutes each), lambda 0.05's minimum too (about a minute).
 """
 import pytest
 
@@ -15,6 +15,9 @@ R_MM, C10, GAMMA = 20.0, 0.3, 30.0
 # lambda -> (P* [N], error bar [N]) of the base shell (docs: "The base shell")
 BASE = {0.3: (-2.5283, 0.0016), 1.0: (-2.1751, 0.0094), 2.0: (-2.0999, 0.087)}
 ENERGY_BASE = (-1.8460, 0.0077)
+# t/R -> lambda 0.05's P* [N] (docs: "Pull-off against lambda", rows of
+# docs/figures/cohesive_thickness.csv): the minimum moved to t/R = 0.075
+LONG_RANGE = {0.05: (-3.0259, 0.00017), 0.075: (-2.9287, 0.00039), 0.1: (-3.0072, 0.013)}
 # t/R -> lambda 1's P* and the energy method's (docs: "Pull-off against thickness")
 THICKNESS = {0.075: ((-2.243, 0.033), (-2.043, 0.017)), 0.1: ((-1.849, 0.011), (-1.618, 0.016)),
              0.15: ((-2.175, 0.0094), (-1.846, 0.0077))}
@@ -82,3 +85,11 @@ def test_lambda_3_on_a_mesh_fitted_to_its_zone():
     assert abs(r.provenance["zone_refinement"] - 0.532) <= 0.001
     _within("lambda 3", r.to_dict()["pull_off"]["P_star_N"], (-2.0826, 0.098))
     assert r.solve.zone_edges >= 2.0
+
+
+@pytest.mark.long
+def test_at_lambda_0_05_the_minimum_moves_to_t_over_R_0_075():
+    P = {t: _cohesive_P(t, 0.05) for t in LONG_RANGE}
+    for t, value in P.items():
+        _within(f"t/R {t}, lambda 0.05", value, LONG_RANGE[t], 3)
+    assert min(P, key=lambda t: abs(P[t])) == 0.075

@@ -239,13 +239,13 @@ def solve_checked(inp: CohesiveInput, error_bars=True, progress=False) -> Cohesi
     cap = Cap(c.t_mm / c.R_mm, c.h_mm / c.R_mm)
     g = inp.gamma_hat
     a_need = a_star_estimate(cap, g)
+    zone = zone_estimate(g, inp.tabor)
     fit = dict(uniform=even_arc(cap, a_need),
                delta_max=delta_bound(cap) if c.delta_max_mm is None else c.delta_max_mm / c.R_mm,
-               a_turn=None if c.delta_max_mm is not None else TURN * a_need)
+               a_turn=None if c.delta_max_mm is not None else TURN * a_need,
+               refine=zone_refinement(zone, c.mesh))
     units = (c.R_mm, c.C10_MPa) if progress else None
     notes = []
-    zone = zone_estimate(g, inp.tabor)
-    fit["refine"] = zone_refinement(zone, c.mesh)
     if fit["refine"] < 1.0:
         h = fitted_spec(c.mesh, fit).h_apex
         notes.append(f"the {c.mesh} mesh is refined at the contact to {h * c.R_mm:.3g} mm "
@@ -316,7 +316,8 @@ def zone_refinement(zone: float, mesh: str) -> float:
 
 
 def fitted_spec(mesh: str, fit: dict):
-    """The mesh `mesh` evenly meshed out to fit["uniform"] of arc / R, its apex element and
+    """The mesh `mesh` evenly meshed out to fit["uniform"] of arc / R (None: the family's
+    0.15), its apex element and
     first layer scaled by fit["refine"] (the same factor on every mesh of the family, so
     the next coarser mesh keeps half the resolution)."""
     spec = mesh_spec(mesh, fit["uniform"])

@@ -1,12 +1,13 @@
 """Cohesive (Maugis-Dugdale) pull-off of the solid hemisphere against the closed form.
 
-    python benchmarks/maugis_dugdale_fe.py LAMBDA [MESH] [RAMP]
+    python benchmarks/maugis_dugdale_fe.py LAMBDA [MESH] [RAMP] [INTERFACE]
 
 Traces the whole path (solver.arclength) for gamma / (C10 R) = 1.7e-4 and prints the
 pull-off in Maugis' units beside solver.maugis_dugdale's, the states, Newton iterations
 and the wall time.  MESH "coarse+zone" (or any mesh name + "+zone"): that mesh refined at
 the contact as `shell-adhesion case --adhesion dugdale` refines it
 (study.cohesive_case.fitted_spec: ZONE_ELEMENTS elements across Maugis' zone).
+INTERFACE frictionless (default) or no_slip (solver.arclength.INTERFACES).
 """
 import sys
 import time
@@ -25,16 +26,18 @@ if __name__ == "__main__":
     lam = float(sys.argv[1])
     mesh = sys.argv[2] if len(sys.argv) > 2 else "coarse"
     ramp = float(sys.argv[3]) if len(sys.argv) > 3 else 0.5
+    interface = sys.argv[4] if len(sys.argv) > 4 else "frictionless"
     name, zone = mesh.removesuffix("+zone"), mesh.endswith("+zone")
     refine = zone_refinement(zone_estimate(GAMMA_HAT, lam), name) if zone else 1.0
     d = discretise(cap_mesh(Cap(1.0, 1.0), fitted_spec(name, dict(uniform=None, refine=refine))))
     law = CohesiveLaw(md.sigma0_of(lam, GAMMA_HAT, 1.0, K_HAT), GAMMA_HAT, ramp)
     t0 = time.perf_counter()
-    path = trace(Interface(d, law), DELTA_MAX)
+    path = trace(Interface(d, law), DELTA_MAX, interface=interface)
     dt = time.perf_counter() - t0
     sc = md.scales(GAMMA_HAT, 1.0, K_HAT)
     ref = md.pull_off(lam)
-    print(f"lambda {lam}, mesh {mesh} ({d.ndof} dofs), ramp {ramp}: {path.ended_by}; "
+    print(f"lambda {lam}, mesh {mesh} ({d.ndof} dofs), ramp {ramp}, {interface}: "
+          f"{path.ended_by}; "
           f"{len(path.states)} states, {path.timer.newton_iterations} Newton iterations, "
           f"{dt:.1f} s")
     po = pull_off(path)

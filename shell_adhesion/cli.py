@@ -476,7 +476,7 @@ def _parser():
                       help="adhesion energy gamma [J/m^2]; repeat for several (one FE run serves all)")
     case.add_argument("--interface", choices=INTERFACES, default=None,
                       help="interface model (default no_slip, the paper's; frictionless "
-                           "with --adhesion dugdale, the only one it has)")
+                           "with --adhesion dugdale, which takes either)")
     case.add_argument("--adhesion", choices=ADHESIONS, default="energy",
                       help="energy (default): zero-range adhesion, Maugis' energy method; "
                            "dugdale: finite range, a cohesive zone of stress --sigma0 "

@@ -20,9 +20,12 @@ IN_MPA = {"C01_MPa": "C01_over_C10", "C20_MPa": "C20_over_C10", "C30_MPa": "C30_
           "D1_per_MPa": "D1_times_C10"}
 COEFFICIENTS = RATIOS + tuple(IN_MPA)
 KEYS = ("name", "description", "R_mm", "base", "sweeps", "grid", "material", "interface", "mesh",
-        "delta_max_over_R", "error_bars", "task_timeout_s", "outputs", "cavity")
+        "delta_max_over_R", "error_bars", "task_timeout_s", "outputs", "cavity", "adhesion")
 CAVITY_KEYS = ("mode", "p_kPa", "p0_kPa", "p_atm_kPa", "gas_exponent")
 CAVITY_FACTORS = ("p_kPa",)     # cavity parameters that sweeps and grid may vary
+ADHESION_KEYS = ("model", "tabor")
+ADHESION_MODELS = ("energy", "dugdale")
+ADHESION_FACTORS = ("tabor",)   # the cohesive law's parameter that sweeps and grid may vary
 OUTPUTS = ("equilibrium_curves", "loading_curves", "relaxation_curves", "deformed_states")
 
 # ---------------------------------------------------------------------------------------

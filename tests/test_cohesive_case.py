@@ -33,8 +33,6 @@ BAD = [
     (DUGDALE + ["--tabor", "inf"], "--tabor"),
     (DUGDALE + ["--tabor", "5"], "--tabor: 5: outside the supported domain 0.05 <= lambda <= 3"),
     (DUGDALE + ["--sigma0", "1e-4"], "--sigma0 = 0.0001 MPa gives lambda = 0.000549"),
-    (DUGDALE + ["--tabor", "1", "--interface", "no_slip"], "--interface: no_slip with "
-                                                           "--adhesion dugdale"),
     (DUGDALE + ["--tabor", "1", "--gamma", "20"], "--gamma: 2 values given"),
     (DUGDALE[:1] + ["dugdale", "--tabor", "1", "--material", "yeoh", "--C20", "0.01"],
      "--material: yeoh with --adhesion dugdale"),

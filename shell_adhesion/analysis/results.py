@@ -41,6 +41,10 @@ def open_results(path) -> xr.Dataset:
 def check_cube(ds: xr.Dataset) -> None:
     """Raise NotACube unless `ds` has the cube's dimensions, variables and study record
     (R_mm and the base values as numbers)."""
+    if ds.attrs.get("adhesion") == "dugdale":
+        raise NotACube("a cohesive (adhesion: dugdale) study's cube: the tables and analysis "
+                       "are for the energy method's cubes; `run` printed its answers, and "
+                       "xarray reads it (docs/studies.md, finite-range adhesion)")
     missing = [d for d in DIMS if d not in ds.dims] + [v for v in _REQUIRED if v not in ds]
     if missing:
         raise NotACube("not a shell-adhesion results cube (missing " + ", ".join(missing) + ")")

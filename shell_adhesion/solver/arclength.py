@@ -14,7 +14,11 @@ tangent (bordering), so the path passes the folds, where that block is singular,
 as no state lands exactly on one.
 
 Contact and cohesion are one smooth interface law (`solver.cohesive`: a stiff penalty
-below the plane, frictionless), so the path has no contact events.  It starts from the
+below the plane), so the path has no contact events.  Tangentially the contact is
+frictionless, or no_slip: an outer node whose gap is below 0 at a converged state keeps
+its radial displacement (a prescribed dof) until a converged state finds its gap above
+RELEASE delta_c (it touched within the last step: it is held where that step left it).
+The law itself is normal only, so the cohesive zone beyond the held nodes slides.  It starts from the
 shell lifted clear of the plane (delta0 < 0, no interaction: a rigid shift), approaches to
 delta_max, turns round and retracts until the shell is out of the cohesive range again.
 Every loop is bounded (`ArcSettings`); a non-finite residual is a failed step.
@@ -28,7 +32,7 @@ import numpy as np
 from shell_adhesion.errors import ConvergenceError
 
 from .cohesive import Interface
-from .contact import constraints, gaps, rim_load
+from .contact import Constraints, constraints, gaps, rim_load
 from .forms import strain_energy, tangent
 from .linear import Timer
 from .path import Settings, _Problem
@@ -152,17 +156,30 @@ class _Continuation:
                                + ", ".join(f"{h:.3g}" for h in history[-3:]) + ")")
 
 
+INTERFACES = ("frictionless", "no_slip")
+# a held node lets go where its gap exceeds this fraction of delta_c.  At 0 the node at
+# the contact edge flickers in and out on the approach, each release dissipating the shear
+# it held (the base shell, lambda 1, coarse, pressed to 2 mm: 6.5e-3 of its largest
+# U + Pi lost before the turn); 1e-3, 1e-2, 1e-1 give the same P* to 1e-4
+RELEASE = 0.01
+
+
 def trace(iface: Interface, delta_max: float, delta0: float = None,
-          settings: ArcSettings = ArcSettings(), progress=None, a_turn: float = None) -> ArcPath:
+          settings: ArcSettings = ArcSettings(), progress=None, a_turn: float = None,
+          interface: str = "frictionless") -> ArcPath:
     """The equilibrium path from the shell lifted to delta0 / R (default: twice the law's
     reach above the plane) to delta_max / R (or, sooner, to a contact radius of a_turn / R)
-    and back until the shell leaves the cohesive range (or settings.max_steps states)."""
+    and back until the shell leaves the cohesive range (or settings.max_steps states);
+    `interface` the tangential contact (INTERFACES)."""
     if not (math.isfinite(delta_max) and delta_max > 0):
         raise ValueError(f"delta_max: {delta_max!r} must be a finite number > 0 (units of R)")
+    if interface not in INTERFACES:
+        raise ValueError(f"interface: {interface!r} must be one of {', '.join(INTERFACES)}")
     s, law, d = settings, iface.law, iface.d
-    cn = _Continuation(iface, "frictionless", s)
+    cn = _Continuation(iface, interface, s)
     delta0 = -2.0 * law.reach if delta0 is None else delta0
-    c = constraints(d, "frictionless", [])
+    free_slip = constraints(d, "frictionless", [])
+    c, stuck = free_slip, np.zeros(0, dtype=int)
     x = np.zeros(d.ndof)
     x[d.n2:2 * d.n2] = -delta0                   # rigid shift: every u_z = -delta0
     K, r = cn.linearise(x)
@@ -212,7 +229,30 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
             # held by its adhered apex); out of range, the approach went back
             ended_by = f"the approach turned back out of range below delta0 = {delta0:.6g} R"
             break
+        if interface == "no_slip":
+            g = gaps(d, x, cn.candidates)
+            held = (g < 0.0) | np.isin(cn.candidates, stuck) & (g <= RELEASE * law.delta_c)
+            if not np.array_equal(cn.candidates[held], stuck):
+                stuck = cn.candidates[held]
+                c = held_radially(d, free_slip, stuck)
+                try:
+                    t = cn.tangent_at(K, c, t)
+                except ConvergenceError as err:
+                    ended_by = f"no tangent after the stuck nodes changed ({err})"
+                    break
     return ArcPath(tuple(states), turn, ended_by, cn.timer)
+
+
+def held_radially(d, base: Constraints, outer_index) -> Constraints:
+    """`base` with the radial dofs of the outer nodes `outer_index` (into capmesh.outer)
+    prescribed too (no_slip contact: they keep their radial displacement)."""
+    fixed = np.union1d(base.fixed, d.ur(d.capmesh.outer[outer_index]))
+    mask = np.ones(d.ndof, dtype=bool)
+    mask[fixed] = False
+    free = np.flatnonzero(mask)
+    free_pos = np.full(d.ndof, -1)
+    free_pos[free] = np.arange(len(free))
+    return Constraints(fixed, free, base.rimz, free_pos)
 
 
 def _state(cn, x, delta, K, r, t, it) -> ArcState:

@@ -20,7 +20,9 @@ PENALTY_ONSET delta_c of penetration.  The interface stress -sigma
 (> 0 compression) is then continuous, the contact radius a is where g crosses 0 and the
 cohesive zone ends where g reaches delta_c: there are no contact events (node-wise
 unilateral contact of the Q2 surface chatters: a corner node held at the contact edge
-carries a tensile reaction under a compressive pressure).  The contact is frictionless.
+carries a tensile reaction under a compressive pressure).  The law is normal only: it
+carries no shear (frictionless contact; `solver.arclength` holds touching nodes radially
+for no_slip).
 
 The law is Dugdale's (sigma = sigma0 for g < delta_c = gamma / sigma0, then 0) with the
 step replaced by a cubic smooth-step of width w = `ramp` delta_c centred on delta_c:

@@ -3,7 +3,8 @@
 
 The interface pulls with sigma0 wherever the outer surface's gap is below delta_c =
 gamma / sigma0 (`solver.cohesive`, Dugdale's law with a cubic smooth-step of half delta_c;
-frictionless contact); the whole path (approach, jump-in, pressed state, retraction,
+frictionless contact, or no_slip: a node keeps its radial position while its gap is below 0,
+`solver.arclength`); the whole path (approach, jump-in, pressed state, retraction,
 jump-off) is traced by arc-length continuation (`solver.arclength`) and gives the
 fixed-load pull-off (least P) and the fixed-grips one (the fold in delta), with the
 contact radius a (gap 0) and the cohesive-zone radius c (gap delta_c).  The strength is
@@ -90,7 +91,7 @@ def cohesive_input(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2, sigma0_MPa=None, tabor
     """Check a cohesive case's input before any computation; InputError names the field
     as `names` calls it (API_NAMES and COHESIVE_NAMES by default).  `solid` holds the
     material and cavity arguments of `case_input`: only the open neo-Hookean shell is
-    supported."""
+    supported.  `interface` frictionless or no_slip, as the energy method's."""
     n = {**API_NAMES, **COHESIVE_NAMES, **(names or {})}
     inp = case_input(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2, delta_max_mm, interface, mesh,
                      n, **solid)
@@ -101,9 +102,6 @@ def cohesive_input(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2, sigma0_MPa=None, tabor
     if inp.cavity.closed:
         raise InputError(f"{n['cavity']}: {inp.cavity.mode} with {n['adhesion']} dugdale: "
                          f"the cohesive interface is for the open shell only")
-    if inp.interface != "frictionless":
-        raise InputError(f"{n['interface']}: {inp.interface} with {n['adhesion']} dugdale: "
-                         f"the cohesive interface is frictionless (use frictionless)")
     if len(inp.gamma_J_m2) != 1:
         raise InputError(f"{n['gamma_J_m2']}: {len(inp.gamma_J_m2)} values given: "
                          f"{n['adhesion']} dugdale needs exactly one gamma [J/m^2]")
@@ -233,8 +231,10 @@ def solve_cohesive_case(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2, *, sigma0_MPa=Non
     return solve_checked(inp, error_bars, progress)
 
 
-def solve_checked(inp: CohesiveInput, error_bars=True, progress=False) -> CohesiveCaseResult:
-    """`solve_cohesive_case` of an input already checked by `cohesive_input`."""
+def solve_checked(inp: CohesiveInput, error_bars=True, progress=False,
+                  timeout_s=None) -> CohesiveCaseResult:
+    """`solve_cohesive_case` of an input already checked by `cohesive_input`; `timeout_s`:
+    a path still being traced after this many seconds raises TimeoutError."""
     c = inp.case
     cap = Cap(c.t_mm / c.R_mm, c.h_mm / c.R_mm)
     g = inp.gamma_hat
@@ -253,8 +253,9 @@ def solve_checked(inp: CohesiveInput, error_bars=True, progress=False) -> Cohesi
                      f"zone expected at the pull-off (a sphere's, Maugis: {zone * c.R_mm:.3g} mm)")
         if progress:
             print(f"  note: {notes[-1]}", file=sys.stderr, flush=True)
-    solve = _solve(cap, inp.law, c.mesh, fit, units)
-    coarser = (_solve(cap, inp.law, coarser_mesh(c.mesh), fit, units)
+    deadline = None if timeout_s is None else time.monotonic() + timeout_s
+    solve = _solve(cap, inp.law, c.interface, c.mesh, fit, units, deadline)
+    coarser = (_solve(cap, inp.law, c.interface, coarser_mesh(c.mesh), fit, units, deadline)
                if error_bars and not solve.refused else None)
     if not solve.refused and solve.zone_edges < ZONE_EDGES_MIN:
         notes.append(f"the cohesive zone at the pull-off spans {solve.zone_edges:.2g} outer "
@@ -275,16 +276,19 @@ def solve_checked(inp: CohesiveInput, error_bars=True, progress=False) -> Cohesi
     return CohesiveCaseResult(inp, solve, coarser, tuple(notes), prov)
 
 
-def _solve(cap, law, mesh, fit, units=None) -> CohesiveSolve:
-    """Trace the path on `mesh` (fitted to the zone: `fitted_spec`) and read its pull-off;
-    `units` (R_mm, C10_MPa): report progress in them."""
+def _solve(cap, law, interface, mesh, fit, units=None, deadline=None) -> CohesiveSolve:
+    """Trace the path with `interface` contact on `mesh` (fitted to the zone:
+    `fitted_spec`) and read its pull-off; `units` (R_mm, C10_MPa): report progress in them;
+    `deadline` (time.monotonic()): TimeoutError after it."""
     t0 = time.perf_counter()
     d = discretise(cap_mesh(cap, fitted_spec(mesh, fit)))
     iface = Interface(d, law)
     report = None if units is None else _progress_line(mesh, *units)
+    if deadline is not None:
+        report = _with_deadline(report, deadline, mesh)
     settings = REFINED_SETTINGS if fit.get("refine", 1.0) < 1.0 else ArcSettings()
     path = trace(iface, fit["delta_max"], settings=settings, progress=report,
-                 a_turn=fit["a_turn"])
+                 a_turn=fit["a_turn"], interface=interface)
     wall = time.perf_counter() - t0
     if path.turn < 0 or path.ended_by != "left the cohesive range":
         what = "did not turn round" if path.turn < 0 else "ended before leaving the cohesive range"
@@ -339,6 +343,18 @@ def zone_edges(iface: Interface, a: float, c: float) -> float:
     r0, r2 = r[iface.edges[0]], r[iface.edges[2]]
     k = int(np.clip(np.searchsorted(r2, a), 0, len(r2) - 1))
     return float((c - a) / (r2[k] - r0[k]))
+
+
+def _with_deadline(report, deadline, mesh):
+    """`report` (or nothing) per state, then TimeoutError once time.monotonic() passes
+    `deadline`."""
+    def check(state):
+        if report is not None:
+            report(state)
+        if time.monotonic() > deadline:
+            raise TimeoutError(f"the path on the {mesh} mesh was still being traced at the "
+                               f"task's time limit")
+    return check
 
 
 def _progress_line(mesh, R_mm, C10_MPa):

@@ -27,6 +27,9 @@
       p_atm_kPa: 101.325        #   pressure, sealed: ambient pressure, kPa (default 101.325)
                                 #   sealed: p0_kPa (gauge at sealing, default 0), gas_exponent
                                 #   (n of p V^n = const, >= 1, default 1 isothermal)
+    adhesion:                   # finite-range adhesion (default: the energy method)
+      model: dugdale            #   energy or dugdale (study.cohesive_study: one traced path
+      tabor: 1                  #   per point); tabor the base lambda, may be swept
     error_bars: true            # a second, coarser mesh for error bars (default true)
     task_timeout_s: 3600        # wall-time limit of one FE task, s (default 3600): a task
                                 #   past it is recorded as failed with its reason
@@ -77,7 +80,8 @@ import re
 
 import yaml
 
-from shell_adhesion.cube import (CAVITY_FACTORS, CAVITY_KEYS, COEFFICIENTS, FACTORS, IN_MPA,
+from shell_adhesion.cube import (ADHESION_FACTORS, ADHESION_KEYS, ADHESION_MODELS,
+                                 CAVITY_FACTORS, CAVITY_KEYS, COEFFICIENTS, FACTORS, IN_MPA,
                                  KEYS, OUTPUTS, RATIOS)
 from shell_adhesion.errors import InputError
 from shell_adhesion.solver.contact import INTERFACES
@@ -129,6 +133,12 @@ class Study:
     cavity: dict = field(default_factory=dict)     # the cavity block in kPa ({}: open)
     error_bars: bool = True         # a second, coarser mesh gives each number's error bar
     task_timeout_s: float = TASK_TIMEOUT_S   # wall-time limit of one FE task, s
+    adhesion: dict = field(default_factory=dict)   # the adhesion block ({}: energy method)
+
+    @property
+    def cohesive(self) -> bool:
+        """Finite-range adhesion (`adhesion: {model: dugdale}`): study.cohesive_study runs it."""
+        return self.adhesion.get("model") == "dugdale"
 
     @property
     def model(self) -> str:
@@ -168,7 +178,8 @@ class Study:
                     error_bars=self.error_bars, task_timeout_s=self.task_timeout_s,
                     outputs=asdict(self.outputs),
                     **({"material": dict(self.material)} if self.material else {}),
-                    **({"cavity": dict(self.cavity)} if self.cavity else {}))
+                    **({"cavity": dict(self.cavity)} if self.cavity else {}),
+                    **({"adhesion": dict(self.adhesion)} if self.adhesion else {}))
 
 
 # -- reading ---------------------------------------------------------------------------
@@ -295,7 +306,7 @@ def _factor_value(factor, value, place) -> float:
 
 
 def _factor_lists(doc, place) -> dict:
-    _keys(doc, place, FACTORS + COEFFICIENTS + CAVITY_FACTORS, "factor")
+    _keys(doc, place, FACTORS + COEFFICIENTS + CAVITY_FACTORS + ADHESION_FACTORS, "factor")
     out = {}
     for factor, values in doc.items():
         fplace = _join(place, factor)
@@ -398,9 +409,10 @@ def _validate(doc, source, sha256) -> Study:
     if not timeout > 0:
         raise StudyError(f"task_timeout_s: {timeout:g} must be > 0 (seconds per FE task)")
 
+    adhesion = _adhesion(doc.get("adhesion"), sweeps, grid, material, cavity)
     study = Study(name, R_mm, base, sweeps, grid, interface, mesh, delta_max, outputs,
                   description, source, sha256, material, cavity=cavity, error_bars=error_bars,
-                  task_timeout_s=timeout)
+                  task_timeout_s=timeout, adhesion=adhesion)
     _check_points(study)
     return study
 
@@ -463,6 +475,44 @@ def _cavity(doc, sweeps, grid) -> dict:
     return out
 
 
+def _adhesion(doc, sweeps, grid, material, cavity) -> dict:
+    """The adhesion block: model energy ({}, the default) or dugdale with its base lambda
+    (`tabor`, checked per point by study.cohesive_case's rules); a cohesive study is of
+    the open neo-Hookean shell."""
+    swept = [f"{g}.{a}" for g, v in (("sweeps", sweeps), ("grid", grid))
+             for a in ADHESION_FACTORS if a in v]
+    if doc is None:
+        if swept:
+            raise StudyError(f"{swept[0]}: given without adhesion.model dugdale (the energy "
+                             "method has no tabor)")
+        return {}
+    _keys(doc, "adhesion", ADHESION_KEYS)
+    model = _string(doc.get("model", "energy"), "adhesion.model")
+    if model not in ADHESION_MODELS:
+        raise StudyError(f"adhesion.model: {model!r} must be one of {', '.join(ADHESION_MODELS)}")
+    if model == "energy":
+        if "tabor" in doc or swept:
+            where = "adhesion.tabor" if "tabor" in doc else swept[0]
+            raise StudyError(f"{where}: given with adhesion.model energy (the energy method has "
+                             "zero range; use dugdale)")
+        return {}
+    if "tabor" not in doc:
+        raise StudyError("adhesion.tabor: missing (the Tabor-Maugis lambda of adhesion.model "
+                         "dugdale; sweeps and grid may vary it)")
+    model_of = material.get("model", "neo_hooke")
+    coefficients = [k for k in material if k != "model"] + [
+        f"{g}.{r}" for g, v in (("sweeps", sweeps), ("grid", grid)) for r in COEFFICIENTS
+        if r in v]
+    if model_of != "neo_hooke" or coefficients:
+        raise StudyError(f"adhesion.model: dugdale with material "
+                         f"{model_of if model_of != 'neo_hooke' else coefficients[0]}: the "
+                         "cohesive interface is for the incompressible neo-Hookean solid only")
+    if cavity and cavity.get("mode") != "open":
+        raise StudyError(f"adhesion.model: dugdale with cavity.mode {cavity['mode']}: the "
+                         "cohesive interface is for the open shell only")
+    return {"model": "dugdale", "tabor": _number(doc["tabor"], "adhesion.tabor")}
+
+
 def cavity_at(study: Study, point: dict):
     """The dimensionless cavity (`solver.cavity.Cavity`, pressures / C10) of a requested
     point ({factor: (value, place)}); StudyError naming the place when a rule fails."""
@@ -478,6 +528,26 @@ def cavity_at(study: Study, point: dict):
     try:
         return cavity_of(c.pop("mode"), point["C10_MPa"][0], names=names, **c)
     except InputError as e:     # the rules are in kPa: C10 only converts
+        raise StudyError(str(e)) from None
+
+
+def cohesive_input_at(study: Study, point: dict):
+    """The cohesive case (`study.cohesive_case.CohesiveInput`) of a requested point
+    ({factor: (value, place)}) of a study with `adhesion: {model: dugdale}`, checked by
+    study.cohesive_case's rules; StudyError naming the point's places in the file."""
+    from .cohesive_case import cohesive_input
+    R = study.R_mm
+    (t, t_place), (h, h_place) = point["t_over_R"], point["h_over_R"]
+    (C10, c_place), (gamma, g_place) = point["C10_MPa"], point["gamma_J_m2"]
+    lam, lam_place = point["tabor"]
+    names = dict(R_mm="R_mm", t_mm=t_place, h_mm=h_place, C10_MPa=c_place,
+                 gamma_J_m2=g_place, tabor=lam_place, delta_max_mm="delta_max_over_R",
+                 interface="interface", mesh="mesh", adhesion="adhesion.model")
+    delta_max = None if study.delta_max_over_R is None else study.delta_max_over_R * R
+    try:
+        return cohesive_input(R, t * R, h * R, C10, [gamma], tabor=lam, delta_max_mm=delta_max,
+                              interface=study.interface, mesh=study.mesh, names=names)
+    except InputError as e:         # the rule, named by the file's place
         raise StudyError(str(e)) from None
 
 
@@ -513,13 +583,15 @@ def requested(study: Study):
     base.update({r: (v, f"material.{r}") for r, v in study.material.items()
                  if r in COEFFICIENTS})
     base.update({c: (v, f"cavity.{c}") for c, v in study.cavity.items() if c in CAVITY_FACTORS})
+    base.update({a: (v, f"adhesion.{a}") for a, v in study.adhesion.items()
+                 if a in ADHESION_FACTORS})
     if study.sweeps or not study.grid:
         yield _with_ratios(base)
     for f, values in study.sweeps.items():
         for i, v in enumerate(values):
             yield _with_ratios({**base, f: (v, f"sweeps.{f}[{i}]")})
     if study.grid:
-        names = FACTORS + tuple(r for r in COEFFICIENTS + CAVITY_FACTORS
+        names = FACTORS + tuple(r for r in COEFFICIENTS + CAVITY_FACTORS + ADHESION_FACTORS
                                 if r in study.grid or r in base)
         axes = [[(v, f"grid.{f}[{i}]") for i, v in enumerate(study.grid[f])] if f in study.grid
                 else [base[f]] for f in names]
@@ -569,3 +641,5 @@ def _check_points(study: Study):
             if study.delta_max_over_R is not None:
                 check_delta_max(study.delta_max_over_R, h, "delta_max_over_R", h_place,
                                 t_over_R=t)
+        if study.cohesive:          # lambda's range, one gamma: study.cohesive_case's rules
+            cohesive_input_at(study, point)

@@ -56,9 +56,9 @@ def _imported(module: str) -> set:
     return out
 
 
-def pathset_modules() -> tuple:
-    """PATHSET_ROOTS and every package module they import, transitively (sorted)."""
-    seen, todo = set(), list(PATHSET_ROOTS)
+def imported_closure(roots) -> tuple:
+    """`roots` and every package module they import, transitively (sorted)."""
+    seen, todo = set(), list(roots)
     while todo:                             # bounded: each module enters `seen` once
         m = todo.pop()
         if m not in seen:
@@ -67,15 +67,25 @@ def pathset_modules() -> tuple:
     return tuple(sorted(seen))
 
 
-@lru_cache(maxsize=1)
-def solver_source_sha256() -> str:
-    """sha256 over the names and sources of `pathset_modules()`."""
+def pathset_modules() -> tuple:
+    """PATHSET_ROOTS and every package module they import, transitively (sorted)."""
+    return imported_closure(PATHSET_ROOTS)
+
+
+def source_sha256(modules: tuple) -> str:
+    """sha256 over the names and sources of `modules` (dotted, below shell_adhesion)."""
     package_root = Path(solver.__file__).parent.parent
     h = hashlib.sha256()
-    for m in pathset_modules():
+    for m in modules:
         p = package_root.joinpath(*m.split(".")).with_suffix(".py")
         h.update(m.encode() + b"\0" + p.read_bytes() + b"\0")
     return h.hexdigest()
+
+
+@lru_cache(maxsize=1)
+def solver_source_sha256() -> str:
+    """sha256 over the names and sources of `pathset_modules()`."""
+    return source_sha256(pathset_modules())
 
 
 def pathset_key(t_over_R, h_over_R, interface, mesh, delta_max_over_R, gamma_max_hat,

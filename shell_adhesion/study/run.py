@@ -536,11 +536,13 @@ def _held_by_index(plan: Plan, catalogue) -> int:
 def execute(study, out=None, catalogue=None, scheduler=None, progress=True, workers=None,
             settings: Settings = None) -> Outcome:
     """Run a study; the orchestration behind `run_study` (see there), with the details
-    of what was computed and reused.  Raises StudyError (RunInputError for --out and
+    of what was computed and reused (a cohesive study: study.cohesive_study's outcome).  Raises StudyError (RunInputError for --out and
     --scheduler) before creating anything, SchedulerLost or Interrupted (after keeping
     all finished work in the catalogue, writing no cube)."""
     t0 = time.perf_counter()
     study = _study_of(study)
+    if study.cohesive:
+        return _execute_cohesive(study, out, catalogue, scheduler, progress, workers)
     plan = make_plan(study, settings if settings is not None else Settings())
     out_dir = check_out(out if out is not None else DEFAULT_OUT)
     _writable_folder("catalogue", catalogue if catalogue is not None else default_dir())
@@ -560,6 +562,36 @@ def execute(study, out=None, catalogue=None, scheduler=None, progress=True, work
                     client.close(timeout=5)
                 except Exception:       # a lost scheduler cannot be told goodbye
                     pass
+
+
+def _execute_cohesive(study, out, catalogue, scheduler, show, workers):
+    """A study with `adhesion: {model: dugdale}`: study.cohesive_study on the same dask
+    cluster (local, or the scheduler's) and catalogue as an energy-method study."""
+    from . import cohesive_study
+    out_dir = check_out(out if out is not None else DEFAULT_OUT)
+    _writable_folder("catalogue", catalogue if catalogue is not None else default_dir())
+    output = out_dir / f"{study.name}.nc"
+
+    @contextmanager
+    def client_of():
+        if scheduler:
+            client = _connect_external(scheduler)
+            try:
+                yield client
+            finally:
+                client.close(timeout=5)
+        else:
+            with _local_cluster(workers) as local:
+                yield local
+
+    with _quiet_dask():
+        try:
+            with interrupt.watched():
+                return cohesive_study.execute(study, out_dir, output, catalogue, client_of,
+                                              show)
+        except KeyboardInterrupt:
+            raise Interrupted("interrupted: the finished cohesive points are kept in the "
+                              "catalogue; no cube written; run again to resume") from None
 
 
 @contextmanager
@@ -745,7 +777,8 @@ def run_study(study, *, out=None, catalogue=None, scheduler=None, progress=True,
     xarray.Dataset
         The results cube as written: dims C10 [MPa], t_over_R, h_over_R, gamma [J m-2];
         forces in N, lengths in mm, energies in mJ; `status` says, per point, ok, not
-        requested, solver failed or out of range.
+        requested, solver failed or out of range.  A study with `adhesion: {model:
+        dugdale}` gives study.cohesive_study's cube (dimension `tabor` too).
 
     Raises
     ------
@@ -759,12 +792,18 @@ def run_study(study, *, out=None, catalogue=None, scheduler=None, progress=True,
     """
     outcome = execute(study, out, catalogue, scheduler, progress, workers, settings)
     if progress:
-        print(summary(outcome, outcome.dataset))
+        if isinstance(outcome, Outcome):
+            print(summary(outcome, outcome.dataset))
+        else:
+            from .cohesive_study import summary as cohesive_summary
+            print(cohesive_summary(outcome))
     return outcome.dataset
 
 
 def exit_code(ds) -> int:
     """0 if every requested point of the cube was evaluated, else 1."""
+    if ds.attrs.get("adhesion") == "dugdale":       # study.cohesive_study's cube
+        return int(bool((ds["status"] == "refused").any()))
     counts = dataset.summary_counts(ds)
     return 1 if counts["solver failed"] + counts["out of range"] else 0
 
@@ -840,8 +879,11 @@ def dry_run(study, catalogue=None, workers=None, scheduler=None) -> str:
     holds (by its index), and an estimate of the time from the timings it recorded.
     Computes nothing, creates nothing."""
     study = _study_of(study)
-    plan = make_plan(study, Settings())
     directory = Path(catalogue) if catalogue is not None else default_dir()
+    if study.cohesive:
+        from .cohesive_study import dry_run as cohesive_dry_run
+        return cohesive_dry_run(study, directory)
+    plan = make_plan(study, Settings())
     missing, parts, times = list(plan.all_shells), 0, []
     if (directory / INDEX).exists():
         with Catalogue(directory, create=False) as cat:

@@ -1,0 +1,161 @@
+"""Studies with finite-range adhesion (`adhesion: {model: dugdale, tabor: L}`,
+study.cohesive_study): lambda a factor and a cube dimension, the traced paths in the cube,
+one solve per dimensionless problem shared by every point that asks for it (exact scaling),
+each answer kept in the catalogue, bad files refused before any computation.
+"""
+import numpy as np
+import pytest
+
+from shell_adhesion.analysis.results import NotACube, open_results
+from shell_adhesion.cli import main
+from shell_adhesion.study.cohesive_case import solve_cohesive_case
+from shell_adhesion.study.config import StudyError, validate
+from shell_adhesion.study.run import dry_run, execute
+
+STUDY = """\
+name: cohesive
+R_mm: 20
+base: {t_over_R: 0.15, h_over_R: 1.0}
+grid:
+  C10_MPa: [0.3, 0.6]
+  gamma_J_m2: [30, 60]
+  tabor: [0.3, 1]
+adhesion: {model: dugdale, tabor: 1}
+interface: frictionless
+mesh: coarse
+error_bars: false
+"""
+
+
+@pytest.fixture(scope="module")
+def run(tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("cohesive")
+    (tmp / "cohesive.yaml").write_text(STUDY)
+    first = execute(tmp / "cohesive.yaml", tmp / "results", catalogue=tmp / "cat",
+                    progress=False, workers=1)
+    return first, tmp
+
+
+def test_lambda_is_a_cube_dimension_and_every_point_is_answered(run):
+    outcome, _ = run
+    ds = outcome.dataset
+    assert outcome.exit_code == 0 and not outcome.failed
+    assert ds.P_star.dims == ("C10", "t_over_R", "h_over_R", "gamma", "tabor")
+    assert list(ds.tabor.values) == [0.3, 1.0] and (ds.status == "ok").all()
+    assert ds.P_star.attrs["units"] == "N" and ds.sigma0.attrs["units"] == "MPa"
+    # 8 points, 6 problems: gamma / (C10 R) 0.005 twice (0.3 MPa with 30, 0.6 with 60)
+    assert len(outcome.points) == 8 and outcome.computed == 6 and outcome.reused == 0
+
+
+def test_points_of_one_problem_scale_exactly(run):
+    ds = run[0].dataset
+    a = ds.sel(C10=0.3, gamma=30.0).squeeze()
+    b = ds.sel(C10=0.6, gamma=60.0).squeeze()
+    # gamma / (C10 R) and lambda the same: forces x C10 R^2 (x 2), lengths and lambda equal
+    np.testing.assert_allclose(b.P_star, 2 * a.P_star, rtol=1e-12)
+    np.testing.assert_allclose(b.a_star, a.a_star, rtol=1e-12)
+    np.testing.assert_allclose(b.sigma0, 2 * a.sigma0, rtol=1e-12)
+    # and the finite range matters: lambda 0.3 pulls harder than lambda 1
+    assert (a.P_star.sel(tabor=0.3) < a.P_star.sel(tabor=1.0)).all()
+
+
+def test_a_point_is_the_case_commands_answer(run):
+    ds = run[0].dataset
+    r = solve_cohesive_case(20, 3, 20, 0.6, 30, tabor=0.3, interface="frictionless",
+                            mesh="coarse", error_bars=False)
+    po = r.to_dict()["pull_off"]
+    at = ds.sel(C10=0.6, gamma=30.0, tabor=0.3).squeeze()
+    for name in ("P_star", "delta_star", "a_star", "c_star"):
+        unit = "N" if name.startswith("P") else "mm"
+        assert float(at[name]) == pytest.approx(po[f"{name}_{unit}"], rel=1e-12)
+
+
+def test_the_traced_paths_are_in_the_cube(run):
+    ds = run[0].dataset
+    for i in range(ds.sizes["point"]):
+        n, turn = int(ds.states[i]), int(ds.turn[i])
+        P = ds.curve_P.values[i, :n]
+        assert np.all(np.isfinite(P)) and np.all(np.isnan(ds.curve_P.values[i, n:]))
+        sel = {d: float(ds[f"point_{d}"][i]) for d in ("C10", "t_over_R", "h_over_R",
+                                                       "gamma", "tabor")}
+        P_star = float(ds.P_star.sel(sel))
+        # the pull-off is the vertex through the least sampled P of the retraction
+        assert P_star <= P[turn:].min() + 1e-12 and P[turn:].min() - P_star <= 0.01 * abs(P_star)
+        assert P[turn] > P_star and abs(P[0]) <= 1e-9
+
+
+def test_a_rerun_takes_every_answer_from_the_catalogue(run):
+    first, tmp = run
+    again = execute(tmp / "cohesive.yaml", tmp / "results", catalogue=tmp / "cat",
+                    progress=False, workers=1)
+    assert again.computed == 0 and again.reused == 6
+    np.testing.assert_array_equal(again.dataset.P_star.values, first.dataset.P_star.values)
+    assert "6 of them, 0 to compute" in dry_run(tmp / "cohesive.yaml", catalogue=tmp / "cat")
+
+
+def test_the_energy_methods_tables_refuse_the_cube_by_name(run):
+    with pytest.raises(NotACube, match="cohesive .adhesion: dugdale. study's cube"):
+        open_results(run[0].output)
+
+
+BAD = [
+    ({"grid": {"tabor": [5]}}, "grid.tabor[0]: 5: outside the supported domain 0.05 <= "
+                               "lambda <= 3"),
+    ({"adhesion": None, "grid": {"tabor": [1]}}, "grid.tabor: given without adhesion.model "
+                                                 "dugdale"),
+    ({"adhesion": {"model": "energy", "tabor": 1}}, "adhesion.tabor: given with "
+                                                    "adhesion.model energy"),
+    ({"adhesion": {"model": "dugdale"}}, "adhesion.tabor: missing"),
+    ({"adhesion": {"model": "jkr", "tabor": 1}}, "adhesion.model: 'jkr' must be one of "
+                                                 "energy, dugdale"),
+    ({"adhesion": {"model": "dugdale", "tabor": 1, "sigma": 2}}, "adhesion.sigma: unknown key"),
+    ({"material": {"model": "mooney_rivlin", "C01_over_C10": 0.2}},
+     "adhesion.model: dugdale with material mooney_rivlin"),
+    ({"cavity": {"mode": "pressure", "p_kPa": 1}}, "adhesion.model: dugdale with cavity.mode "
+                                                   "pressure"),
+    ({"adhesion": {"model": "dugdale", "tabor": "x"}}, "adhesion.tabor: 'x' must be a number"),
+]
+
+
+def _doc(change):
+    import yaml
+    doc = yaml.safe_load(STUDY)
+    for k, v in change.items():
+        if v is None:
+            doc.pop(k, None)
+        elif k == "grid":
+            doc["grid"] = dict(doc["grid"], **v)
+        else:
+            doc[k] = v
+    return doc
+
+
+@pytest.mark.parametrize("change, message", BAD, ids=[m.split(":")[0] for _, m in BAD])
+def test_a_bad_file_is_refused_by_name(change, message):
+    with pytest.raises(StudyError) as e:
+        validate(_doc(change))
+    assert message in str(e.value)
+
+
+def test_the_command_refuses_a_bad_file_in_one_line_with_exit_2(tmp_path, capsys):
+    import yaml
+    path = tmp_path / "bad.yaml"
+    path.write_text(yaml.safe_dump(_doc({"grid": {"tabor": [0.01]}})))
+    assert main(["run", str(path), "--out", str(tmp_path / "out"),
+                 "--catalogue", str(tmp_path / "cat")]) == 2
+    out, err = capsys.readouterr()
+    assert err.count("\n") == 1 and "grid.tabor[0]: 0.01: outside the supported domain" in err
+    assert not (tmp_path / "out").exists() and not (tmp_path / "cat").exists()
+
+
+def test_a_task_past_its_time_limit_is_refused_and_the_run_exits_1(tmp_path):
+    study = STUDY.replace("grid:\n  C10_MPa: [0.3, 0.6]\n  gamma_J_m2: [30, 60]\n  tabor: [0.3, 1]\n",
+                          "grid:\n  C10_MPa: [0.3]\n  gamma_J_m2: [30]\n  tabor: [1]\n")
+    study += "task_timeout_s: 1e-6\n"
+    (tmp_path / "slow.yaml").write_text(study)
+    outcome = execute(tmp_path / "slow.yaml", tmp_path / "results", catalogue=tmp_path / "cat",
+                      progress=False, workers=1)
+    assert outcome.exit_code == 1 and len(outcome.failed) == 1
+    ds = outcome.dataset
+    assert (ds.status == "refused").all() and "TimeoutError" in str(ds.reason.values[0])
+    assert outcome.output.is_file()

@@ -6,19 +6,21 @@ Traces the whole path (solver.arclength) for gamma / (C10 R) = 1.7e-4 and prints
 pull-off in Maugis' units beside solver.maugis_dugdale's, the states, Newton iterations
 and the wall time.  MESH "coarse+zone" (or any mesh name + "+zone"): that mesh refined at
 the contact as `shell-adhesion case --adhesion dugdale` refines it
-(study.cohesive_case.fitted_spec: ZONE_ELEMENTS elements across Maugis' zone).
-INTERFACE frictionless (default) or no_slip (solver.arclength.INTERFACES).
+(study.cohesive_case.fitted_spec: ZONE_ELEMENTS elements across Maugis' zone), its steps
+growing as that command's do there (REFINED_SETTINGS).
+INTERFACE frictionless (default) or no_slip (solver.contact.INTERFACES).
 """
 import sys
 import time
 
 from shell_adhesion.solver import maugis_dugdale as md
-from shell_adhesion.solver.arclength import pull_off, trace
+from shell_adhesion.solver.arclength import ArcSettings, pull_off, trace
 from shell_adhesion.solver.cohesive import CohesiveLaw, Interface
 from shell_adhesion.solver.forms import discretise
 from shell_adhesion.solver.geometry import Cap
 from shell_adhesion.solver.mesh import cap_mesh
-from shell_adhesion.study.cohesive_case import fitted_spec, zone_estimate, zone_refinement
+from shell_adhesion.study.cohesive_case import (REFINED_SETTINGS, fitted_spec, zone_estimate,
+                                                zone_refinement)
 
 GAMMA_HAT, K_HAT, DELTA_MAX = 1.7e-4, 32 / 3, 2e-3
 
@@ -32,7 +34,17 @@ if __name__ == "__main__":
     d = discretise(cap_mesh(Cap(1.0, 1.0), fitted_spec(name, dict(uniform=None, refine=refine))))
     law = CohesiveLaw(md.sigma0_of(lam, GAMMA_HAT, 1.0, K_HAT), GAMMA_HAT, ramp)
     t0 = time.perf_counter()
-    path = trace(Interface(d, law), DELTA_MAX, interface=interface)
+    # a refined mesh's steps grow as the cohesive case's do (study.cohesive_case)
+    settings = REFINED_SETTINGS if refine < 1.0 else ArcSettings()
+    count = [0]
+
+    def report(state):          # a line per 200 states on stderr (a long path shows life)
+        count[0] += 1
+        if count[0] % 200 == 0:
+            print(f"  {count[0]} states, delta/R {state.delta:+.4e}, P/(C10 R^2) "
+                  f"{state.P:+.4e}", file=sys.stderr, flush=True)
+    path = trace(Interface(d, law), DELTA_MAX, settings=settings, interface=interface,
+                 progress=report)
     dt = time.perf_counter() - t0
     sc = md.scales(GAMMA_HAT, 1.0, K_HAT)
     ref = md.pull_off(lam)

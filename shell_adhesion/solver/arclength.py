@@ -18,10 +18,11 @@ below the plane), so the path has no contact events.  Tangentially the contact i
 frictionless, or no_slip: an outer node whose gap is below 0 at a converged state keeps
 its radial displacement (a prescribed dof) until a converged state finds its gap above
 RELEASE delta_c (it touched within the last step: it is held where that step left it).
-The law itself is normal only, so the cohesive zone beyond the held nodes slides.  It starts from the
-shell lifted clear of the plane (delta0 < 0, no interaction: a rigid shift), approaches to
-delta_max, turns round and retracts until the shell is out of the cohesive range again.
-Every loop is bounded (`ArcSettings`); a non-finite residual is a failed step.
+The law itself is normal only, so the cohesive zone beyond the held nodes slides.
+
+The path starts from the shell lifted clear of the plane (delta0 < 0, no interaction: a
+rigid shift), approaches to delta_max, turns round and retracts until the shell is out of
+the cohesive range again.  Every loop is bounded (`ArcSettings`); a non-finite residual is a failed step.
 """
 from dataclasses import dataclass, field
 import math
@@ -32,7 +33,7 @@ import numpy as np
 from shell_adhesion.errors import ConvergenceError
 
 from .cohesive import Interface
-from .contact import Constraints, constraints, gaps, rim_load
+from .contact import INTERFACES, Constraints, constraints, gaps, rim_load
 from .forms import strain_energy, tangent
 from .linear import Timer
 from .path import Settings, _Problem
@@ -156,7 +157,6 @@ class _Continuation:
                                + ", ".join(f"{h:.3g}" for h in history[-3:]) + ")")
 
 
-INTERFACES = ("frictionless", "no_slip")
 # a held node lets go where its gap exceeds this fraction of delta_c.  At 0 the node at
 # the contact edge flickers in and out on the approach, each release dissipating the shear
 # it held (the base shell, lambda 1, coarse, pressed to 2 mm: 6.5e-3 of its largest
@@ -231,7 +231,7 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
             break
         if interface == "no_slip":
             g = gaps(d, x, cn.candidates)
-            held = (g < 0.0) | np.isin(cn.candidates, stuck) & (g <= RELEASE * law.delta_c)
+            held = (g < 0.0) | (np.isin(cn.candidates, stuck) & (g <= RELEASE * law.delta_c))
             if not np.array_equal(cn.candidates[held], stuck):
                 stuck = cn.candidates[held]
                 c = held_radially(d, free_slip, stuck)

@@ -3,8 +3,8 @@
 
 The interface pulls with sigma0 wherever the outer surface's gap is below delta_c =
 gamma / sigma0 (`solver.cohesive`, Dugdale's law with a cubic smooth-step of half delta_c;
-frictionless contact, or no_slip: a node keeps its radial position while its gap is below 0,
-`solver.arclength`); the whole path (approach, jump-in, pressed state, retraction,
+frictionless contact, or no_slip: a node that touches keeps its radius until its gap
+opens past 0.01 delta_c); the whole path (approach, jump-in, pressed state, retraction,
 jump-off) is traced by arc-length continuation (`solver.arclength`) and gives the
 fixed-load pull-off (least P) and the fixed-grips one (the fold in delta), with the
 contact radius a (gap 0) and the cohesive-zone radius c (gap delta_c).  The strength is
@@ -219,7 +219,8 @@ def solve_cohesive_case(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2, *, sigma0_MPa=Non
     """The Maugis-Dugdale pull-off of one open neo-Hookean shell on a rigid plane.
 
     Give the interface's strength as `sigma0_MPa` (> 0) or as the Tabor-Maugis parameter
-    `tabor` (one of them).  Without delta_max_mm the approach turns at TURN times the
+    `tabor` (one of them); `interface` frictionless or no_slip (a node that touches keeps
+    its radius).  Without delta_max_mm the approach turns at TURN times the
     energy method's estimate of the pull-off radius (solver.request), within the domain's
     depth bound.  `error_bars`: the same path on the next coarser mesh (not when the
     requested mesh's path is refused).  `progress`: a

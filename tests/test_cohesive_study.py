@@ -159,3 +159,21 @@ def test_a_task_past_its_time_limit_is_refused_and_the_run_exits_1(tmp_path):
     ds = outcome.dataset
     assert (ds.status == "refused").all() and "TimeoutError" in str(ds.reason.values[0])
     assert outcome.output.is_file()
+
+
+def test_the_run_writes_a_table_and_figures(run):
+    import csv
+    outcome, _ = run
+    ds = outcome.dataset
+    pr = outcome.products
+    assert not pr.skipped and [p.name for p in pr.figures] == ["pull_off_lambda.png",
+                                                               "paths.png"]
+    assert all(p.stat().st_size > 1000 for p in pr.figures)
+    table = next(p for p in pr.tables if p.suffix == ".csv")
+    rows = list(csv.DictReader(table.open()))
+    assert len(rows) == ds.sizes["point"] == 8
+    for r in rows:
+        at = dict(C10=float(r["C10 [MPa]"]), t_over_R=float(r["t/R"]),
+                  h_over_R=float(r["h/R"]), gamma=float(r["gamma [J/m^2]"]),
+                  tabor=float(r["lambda"]))
+        assert float(r["P* [N]"]) == float(ds.P_star.sel(at)) and r["status"] == "ok"

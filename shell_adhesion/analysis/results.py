@@ -43,8 +43,9 @@ def check_cube(ds: xr.Dataset) -> None:
     (R_mm and the base values as numbers)."""
     if ds.attrs.get("adhesion") == "dugdale":
         raise NotACube("a cohesive (adhesion: dugdale) study's cube: the tables and analysis "
-                       "are for the energy method's cubes; `run` printed its answers, and "
-                       "xarray reads it (docs/studies.md, finite-range adhesion)")
+                       "are for the energy method's cubes; `run` wrote its table and figures "
+                       "beside it, and xarray reads it (docs/studies.md, finite-range "
+                       "adhesion)")
     missing = [d for d in DIMS if d not in ds.dims] + [v for v in _REQUIRED if v not in ds]
     if missing:
         raise NotACube("not a shell-adhesion results cube (missing " + ", ".join(missing) + ")")

@@ -30,6 +30,8 @@ import numpy as np
 import xarray as xr
 
 from shell_adhesion import __version__
+from shell_adhesion.analysis.cohesive_products import write_cohesive_products
+from shell_adhesion.analysis.products import Products
 from shell_adhesion.catalogue import Catalogue
 from shell_adhesion.cube import DIMS, GAMMA_UNITS
 
@@ -143,6 +145,7 @@ class CohesiveOutcome:
     wall_s: float
     catalogue: object
     dataset: object = None
+    products: object = None     # analysis.cohesive_products' table and figures
 
 
 def execute(study: Study, out_dir, output, catalogue, client_of, show=True) -> CohesiveOutcome:
@@ -182,13 +185,17 @@ def execute(study: Study, out_dir, output, catalogue, client_of, show=True) -> C
         progress.start("cube")
         ds = build(study, pts, answers, failed)
         energy_dataset.write(ds, output)
+        try:
+            products = write_cohesive_products(output)
+        except Exception as e:      # the cube is written; a drawing bug must not lose it
+            products = Products(skipped={"tables and figures": f"{type(e).__name__}: {e}"})
         progress.update("cube", 1, note=str(output))
         code = 1 if failed or bool((ds["status"] == "refused").any()) else 0
         wall = time.perf_counter() - t0
         cat.finish_run(run_id, code, computed, reused, len(failed), wall)
         catalogue_dir = cat.dir
     return CohesiveOutcome(code, output, pts, computed, reused, failed, wall, catalogue_dir,
-                           ds)
+                           ds, products)
 
 
 def _solve_all(study, todo, by_fp, answers, failed, cat, client_of, progress):
@@ -316,6 +323,11 @@ def summary(outcome: CohesiveOutcome) -> str:
     lines = [f"cohesive study: {len(outcome.points)} points, {outcome.computed} problems "
              f"solved, {outcome.reused} from the catalogue {outcome.catalogue}, "
              f"{len(outcome.failed)} failed; {outcome.wall_s:.1f} s; cube {outcome.output}"]
+    pr = outcome.products
+    if pr is not None:
+        lines.append(f"tables: {', '.join(str(p) for p in pr.tables) or 'none'}; figures: "
+                     f"{', '.join(str(p) for p in pr.figures) or 'none'}"
+                     + "".join(f"; {k} skipped: {v}" for k, v in pr.skipped.items()))
     for i, p in enumerate(outcome.points):
         v = p.values
         head = (f"  C10 {v['C10_MPa']:g} MPa, t/R {v['t_over_R']:g}, h/R {v['h_over_R']:g}, "

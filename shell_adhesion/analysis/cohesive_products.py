@@ -80,12 +80,8 @@ def fig_pull_off_lambda(ds: xr.Dataset):
     for label, lam, P, err in lines:
         ax.errorbar(lam, P, yerr=np.nan_to_num(err), marker="o", capsize=3, label=label)
     ax.set_xscale("log")
-    ax.set_xlabel("Tabor-Maugis lambda")
-    ax.set_ylabel("P* [N]")
-    ax.set_title("fixed-load pull-off against the range of adhesion", fontsize=10)
-    ax.legend(fontsize=7)
-    fig.tight_layout()
-    return fig
+    return _finished(fig, ax, "Tabor-Maugis lambda", "P* [N]",
+                     "fixed-load pull-off against the range of adhesion")
 
 
 def fig_paths(ds: xr.Dataset):
@@ -103,9 +99,15 @@ def fig_paths(ds: xr.Dataset):
             ax.plot(float(ds.delta_star.sel(at)), float(ds.P_star.sel(at)), "o",
                     color=line.get_color())
     ax.axhline(0.0, color="0.6", lw=0.6)
-    ax.set_xlabel("rim approach delta [mm] (> 0 approach)")
-    ax.set_ylabel("P [N] (> 0 compression)")
-    ax.set_title("traced paths; dots: fixed-load pull-offs", fontsize=10)
+    return _finished(fig, ax, "rim approach delta [mm] (> 0 approach)",
+                     "P [N] (> 0 compression)", "traced paths; dots: fixed-load pull-offs")
+
+
+def _finished(fig, ax, xlabel, ylabel, title):
+    """`fig` with its axes labelled, titled and its legend drawn."""
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title, fontsize=10)
     ax.legend(fontsize=7)
     fig.tight_layout()
     return fig

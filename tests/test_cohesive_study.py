@@ -177,3 +177,10 @@ def test_the_run_writes_a_table_and_figures(run):
                   h_over_R=float(r["h/R"]), gamma=float(r["gamma [J/m^2]"]),
                   tabor=float(r["lambda"]))
         assert float(r["P* [N]"]) == float(ds.P_star.sel(at)) and r["status"] == "ok"
+
+
+def test_the_catalogue_lists_the_cohesive_answers(run):
+    from shell_adhesion.catalogue.store import format_entries, list_entries
+    text = format_entries(list_entries(run[1] / "cat"))
+    assert text.count("dugdale lambda=0.3 gamma/(C10 R)=0.005") == 1
+    assert text.count("dugdale") == 6

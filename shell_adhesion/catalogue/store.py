@@ -383,7 +383,8 @@ def list_entries(catalogue_dir=None) -> list:
 def solid_of(key_json) -> str:
     """The solid (and closed cavity) a set's key names, in a few characters: 'neo_hooke'
     (the default), else the model with its non-zero ratios to C10; ', sealed' or
-    ', pressure p=...' (p / C10) for a closed cavity."""
+    ', pressure p=...' (p / C10) for a closed cavity; ', dugdale lambda=... gamma/(C10
+    R)=...' for a cohesive answer."""
     key = json.loads(key_json) if isinstance(key_json, str) else (key_json or {})
     material = key.get("material") or {}
     text = material.get("model", "neo_hooke")
@@ -395,6 +396,8 @@ def solid_of(key_json) -> str:
     cavity = key.get("cavity")
     if cavity:
         text += f", {cavity['mode']}" + (f" p={cavity['p']:g}" if cavity.get("p") else "")
+    if key.get("tabor") is not None:        # a cohesive answer (study.cohesive_study)
+        text += f", dugdale lambda={key['tabor']:g} gamma/(C10 R)={key['gamma_hat']:.3g}"
     return text
 
 

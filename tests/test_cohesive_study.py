@@ -1,7 +1,8 @@
 """Studies with finite-range adhesion (`adhesion: {model: dugdale, tabor: L}`,
 study.cohesive_study): lambda a factor and a cube dimension, the traced paths in the cube,
 one solve per dimensionless problem shared by every point that asks for it (exact scaling),
-each answer kept in the catalogue, bad files refused before any computation.
+each answer kept in the catalogue (Ctrl-C loses none that finished), bad files refused
+before any computation.
 """
 import numpy as np
 import pytest
@@ -184,3 +185,49 @@ def test_the_catalogue_lists_the_cohesive_answers(run):
     text = format_entries(list_entries(run[1] / "cat"))
     assert text.count("dugdale lambda=0.3 gamma/(C10 R)=0.005") == 1
     assert text.count("dugdale") == 6
+
+
+def test_ctrl_c_keeps_the_finished_answers_and_a_rerun_solves_the_rest(tmp_path):
+    import os
+    import signal
+    import sqlite3
+    import subprocess
+    import sys
+    import time
+
+    from shell_adhesion.catalogue import list_entries
+
+    from conftest import ENV, REPO
+    # one worker runs the tasks in submission order: lambda 0.3 (2 s) before lambda 2 (15 s)
+    study = STUDY.replace("grid:\n  C10_MPa: [0.3, 0.6]\n  gamma_J_m2: [30, 60]\n  tabor: [0.3, 1]\n",
+                          "grid:\n  C10_MPa: [0.3]\n  gamma_J_m2: [30]\n  tabor: [0.3, 2]\n")
+    (tmp_path / "ctrl_c.yaml").write_text(study)
+    cat, out = tmp_path / "cat", tmp_path / "results"
+
+    def stored():
+        try:
+            return [r for r in list_entries(cat) if r["status"] == "ok"]
+        except sqlite3.Error:       # the index is being created
+            return []
+
+    proc = subprocess.Popen([sys.executable, "-m", "shell_adhesion", "run",
+                             str(tmp_path / "ctrl_c.yaml"), "--out", str(out), "--catalogue",
+                             str(cat), "--workers", "1"], cwd=REPO, env=ENV,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            start_new_session=True)
+    try:
+        deadline = time.time() + 120
+        while not stored():
+            assert proc.poll() is None, "the run ended before Ctrl-C: " + proc.stderr.read()
+            assert time.time() < deadline, "no answer was stored in time"
+            time.sleep(0.05)
+        os.killpg(proc.pid, signal.SIGINT)          # Ctrl-C reaches the whole group
+        _, err = proc.communicate(timeout=60)
+    finally:
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)
+    assert proc.returncode == 130, err
+    assert "the finished cohesive points are kept in the catalogue" in err
+    assert len(stored()) == 1 and not (out / "cohesive.nc").exists()
+    again = execute(tmp_path / "ctrl_c.yaml", out, catalogue=cat, progress=False, workers=1)
+    assert again.exit_code == 0 and again.reused == 1 and again.computed == 1

@@ -35,7 +35,7 @@ from shell_adhesion.analysis.products import Products
 from shell_adhesion.catalogue import Catalogue
 from shell_adhesion.cube import DIMS, GAMMA_UNITS
 
-from . import keys
+from . import interrupt, keys
 from .cohesive_case import PULL_OFF_FIELDS, CohesiveInput, solve_checked
 from .config import Study, cohesive_input_at, requested
 
@@ -200,24 +200,33 @@ def execute(study: Study, out_dir, output, catalogue, client_of, show=True) -> C
 
 def _solve_all(study, todo, by_fp, answers, failed, cat, client_of, progress):
     """Submit the problems `todo` (fingerprints) to dask; store each answer in the
-    catalogue as it ends (a failed task is recorded and the others go on)."""
+    catalogue as it ends (a failed task is recorded and the others go on).  Ctrl-C is
+    taken between polls (study.interrupt), never inside dask or a catalogue write."""
     if not todo:
         return
-    from distributed import as_completed
-    with client_of() as client:
+    from distributed import wait
+    with client_of() as client, interrupt.deferred():
         futures = {client.submit(solve_task, by_fp[fp][1].input, study.error_bars,
                                  study.task_timeout_s, pure=False): fp for fp in todo}
-        for fut in as_completed(futures):
-            fp = futures[fut]
-            key = by_fp[fp][0]
+        pending = set(futures)
+        while pending:          # bounded: each pass ends a task or waits a second
+            interrupt.check()
             try:
-                answers[fp] = fut.result()
-            except Exception as e:      # recorded, the other points go on
-                failed[fp] = f"{type(e).__name__}: {e}"
-                cat.record_failure(key, failed[fp], study=study.name)
-            else:
-                cat.store(key, to_dataset(answers[fp]), study=study.name)
-            progress.update("cohesive paths", advance=1)
+                done, _ = wait(list(pending), timeout=1.0, return_when="FIRST_COMPLETED")
+            except TimeoutError:
+                continue
+            for fut in done:
+                pending.discard(fut)
+                fp = futures[fut]
+                key = by_fp[fp][0]
+                try:
+                    answers[fp] = fut.result()
+                except Exception as e:      # recorded, the other points go on
+                    failed[fp] = f"{type(e).__name__}: {e}"
+                    cat.record_failure(key, failed[fp], study=study.name)
+                else:
+                    cat.store(key, to_dataset(answers[fp]), study=study.name)
+                progress.update("cohesive paths", advance=1)
 
 
 def build(study: Study, pts: list, answers: dict, failed: dict) -> xr.Dataset:

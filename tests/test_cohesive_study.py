@@ -231,3 +231,13 @@ def test_ctrl_c_keeps_the_finished_answers_and_a_rerun_solves_the_rest(tmp_path)
     assert len(stored()) == 1 and not (out / "cohesive.nc").exists()
     again = execute(tmp_path / "ctrl_c.yaml", out, catalogue=cat, progress=False, workers=1)
     assert again.exit_code == 0 and again.reused == 1 and again.computed == 1
+
+
+def test_an_unreachable_scheduler_is_refused_before_anything_is_created(tmp_path, capsys):
+    (tmp_path / "cohesive.yaml").write_text(STUDY)
+    before = sorted(tmp_path.iterdir())
+    assert main(["run", str(tmp_path / "cohesive.yaml"), "--out", str(tmp_path / "out"),
+                 "--catalogue", str(tmp_path / "cat"), "--scheduler", "tcp://127.0.0.1:9"]) == 2
+    _, err = capsys.readouterr()
+    assert err.count("\n") == 1 and err.startswith("shell-adhesion: error: --scheduler: ")
+    assert sorted(tmp_path.iterdir()) == before

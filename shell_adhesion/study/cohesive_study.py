@@ -32,6 +32,7 @@ import xarray as xr
 from shell_adhesion import __version__
 from shell_adhesion.analysis.cohesive_products import write_cohesive_products
 from shell_adhesion.analysis.products import Products
+from shell_adhesion.atomic import clean_temporaries
 from shell_adhesion.catalogue import Catalogue
 from shell_adhesion.cube import DIMS, GAMMA_UNITS
 
@@ -163,6 +164,7 @@ def execute(study: Study, out_dir, output, catalogue, client_of, show=True) -> C
         key = point_key(p.input, study.error_bars)
         by_fp.setdefault(fingerprint(key), (key, p))
     out_dir.mkdir(parents=True, exist_ok=True)
+    clean_temporaries(out_dir)          # left by a killed run (the catalogue cleans its own)
     answers, failed = {}, {}
     with Catalogue(catalogue) as cat:
         run_id = cat.start_run(study.name, study.source, study.sha256, output, __version__)
@@ -190,12 +192,17 @@ def execute(study: Study, out_dir, output, catalogue, client_of, show=True) -> C
         except Exception as e:      # the cube is written; a drawing bug must not lose it
             products = Products(skipped={"tables and figures": f"{type(e).__name__}: {e}"})
         progress.update("cube", 1, note=str(output))
-        code = 1 if failed or bool((ds["status"] == "refused").any()) else 0
+        code = exit_code(ds)
         wall = time.perf_counter() - t0
         cat.finish_run(run_id, code, computed, reused, len(failed), wall)
         catalogue_dir = cat.dir
     return CohesiveOutcome(code, output, pts, computed, reused, failed, wall, catalogue_dir,
                            ds, products)
+
+
+def exit_code(ds: xr.Dataset) -> int:
+    """0 if every requested point is answered, else 1 (a failed task's point is refused)."""
+    return int(bool((ds["status"] == "refused").any()))
 
 
 def _solve_all(study, todo, by_fp, answers, failed, cat, client_of, progress):

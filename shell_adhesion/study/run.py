@@ -536,9 +536,10 @@ def _held_by_index(plan: Plan, catalogue) -> int:
 def execute(study, out=None, catalogue=None, scheduler=None, progress=True, workers=None,
             settings: Settings = None) -> Outcome:
     """Run a study; the orchestration behind `run_study` (see there), with the details
-    of what was computed and reused (a cohesive study: study.cohesive_study's outcome).  Raises StudyError (RunInputError for --out and
-    --scheduler) before creating anything, SchedulerLost or Interrupted (after keeping
-    all finished work in the catalogue, writing no cube)."""
+    of what was computed and reused (a cohesive study: study.cohesive_study's outcome).
+    Raises StudyError (RunInputError for --out and --scheduler) before creating anything,
+    SchedulerLost or Interrupted (after keeping all finished work in the catalogue,
+    writing no cube)."""
     t0 = time.perf_counter()
     study = _study_of(study)
     if study.cohesive:
@@ -574,17 +575,15 @@ def _execute_cohesive(study, out, catalogue, scheduler, show, workers):
 
     @contextmanager
     def client_of():
-        if scheduler:
-            client = _connect_external(scheduler)
-            try:
-                yield client
-            finally:
-                client.close(timeout=5)
+        if external is not None:
+            yield external
         else:
             with _local_cluster(workers) as local:
                 yield local
 
     with _quiet_dask():
+        # an external scheduler is reached before anything is created (RunInputError)
+        external = _connect_external(scheduler) if scheduler else None
         try:
             with interrupt.watched():
                 return cohesive_study.execute(study, out_dir, output, catalogue, client_of,
@@ -592,6 +591,12 @@ def _execute_cohesive(study, out, catalogue, scheduler, show, workers):
         except KeyboardInterrupt:
             raise Interrupted("interrupted: the finished cohesive points are kept in the "
                               "catalogue; no cube written; run again to resume") from None
+        finally:
+            if external is not None:
+                try:
+                    external.close(timeout=5)
+                except Exception:       # a lost scheduler cannot be told goodbye
+                    pass
 
 
 @contextmanager
@@ -803,7 +808,8 @@ def run_study(study, *, out=None, catalogue=None, scheduler=None, progress=True,
 def exit_code(ds) -> int:
     """0 if every requested point of the cube was evaluated, else 1."""
     if ds.attrs.get("adhesion") == "dugdale":       # study.cohesive_study's cube
-        return int(bool((ds["status"] == "refused").any()))
+        from .cohesive_study import exit_code as cohesive_exit_code
+        return cohesive_exit_code(ds)
     counts = dataset.summary_counts(ds)
     return 1 if counts["solver failed"] + counts["out of range"] else 0
 

@@ -558,11 +558,7 @@ def execute(study, out=None, catalogue=None, scheduler=None, progress=True, work
                 return _execute(plan, out_dir, output, catalogue, scheduler, client, progress,
                                 workers, t0)
         finally:
-            if client is not None:
-                try:
-                    client.close(timeout=5)
-                except Exception:       # a lost scheduler cannot be told goodbye
-                    pass
+            _close_quietly(client)
 
 
 def _execute_cohesive(study, out, catalogue, scheduler, show, workers):
@@ -592,11 +588,16 @@ def _execute_cohesive(study, out, catalogue, scheduler, show, workers):
             raise Interrupted("interrupted: the finished cohesive points are kept in the "
                               "catalogue; no cube written; run again to resume") from None
         finally:
-            if external is not None:
-                try:
-                    external.close(timeout=5)
-                except Exception:       # a lost scheduler cannot be told goodbye
-                    pass
+            _close_quietly(external)
+
+
+def _close_quietly(client):
+    """Close a Client of an external scheduler (None: nothing to close)."""
+    if client is not None:
+        try:
+            client.close(timeout=5)
+        except Exception:       # a lost scheduler cannot be told goodbye
+            pass
 
 
 @contextmanager

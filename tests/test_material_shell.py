@@ -130,4 +130,6 @@ def test_material_reaches_every_entry_point():
     direct = relax_from(d, "no_slip", start, 0.006)
     np.testing.assert_array_equal(rel.P, direct.array("P"))
     neo = relaxation_task(BASE["t"], BASE["h"], "no_slip", "coarse", start, 0.006)
-    assert not np.allclose(neo.P[1:], rel.P[1:], rtol=1e-3)
+    # the start is no equilibrium of neo-Hooke: its first step's energy change misses the
+    # work (solver.path.step_mismatch), so neo-Hooke's path takes other steps, or other P
+    assert len(neo.P) != len(rel.P) or not np.allclose(neo.P[1:], rel.P[1:], rtol=1e-3)

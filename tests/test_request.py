@@ -61,7 +61,9 @@ def test_no_default_exceeds_the_cap_depth():
         cap = Cap(t, h)
         assert delta_bound(cap) < cap.h
         assert delta_bound(cap) <= domain_delta_max(t)
-    assert domain_delta_max(0.05) == 0.5 and domain_delta_max(0.15) == 0.25
+    assert domain_delta_max(0.05) == 0.9 and domain_delta_max(0.15) == 0.25
+    assert delta_bound(Cap(0.05, 1.0)) == pytest.approx(0.9) and delta_bound(Cap(0.05, 0.5)) \
+        == pytest.approx(0.45)
 
 
 def test_a_wrong_estimate_remeshes(monkeypatch):

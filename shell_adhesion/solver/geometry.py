@@ -69,10 +69,13 @@ class Cap:
 T_MIN = 0.02          # thinnest shell, t / R
 H_MIN = 0.2           # shallowest cap, h / R (and h > t for a shell)
 DELTA_MAX = 0.25      # deepest loading, delta / R
-DELTA_MAX_THIN = 0.5  # deepest loading of a thin shell (t < THIN_T), delta / R: it flattens
-THIN_T = 0.15         # onto the plane straining little, and pulls off at contact radii up
-#                       to 0.77 R (t/R = 0.02, h/R = 0.5, gamma/(C10 R) = 0.03), which a
-#                       loading to 0.25 R does not reach (a = 0.70 R there)
+DELTA_MAX_THIN = 0.9  # deepest loading of a thin shell (t < THIN_T), delta / R, and below
+THIN_T = 0.15         # 0.9 h (DEPTH_SHARE): it flattens onto the plane straining little and
+#                       pulls off at contact radii up to 0.77 R (t/R = 0.02, h/R = 0.5,
+#                       gamma/(C10 R) = 0.03), which a loading to 0.25 R does not reach
+#                       (a = 0.70 R there); where a curve has not turned by 0.5 R (t/R 0.02,
+#                       h/R 1) the loading goes on until the hemisphere snaps flat (a from
+#                       0.79 to 0.98 R) and the paths beyond invert, with its checks passing
 GAMMA_MAX = 0.03      # largest gamma / (C10 R) the relaxation paths serve
 
 

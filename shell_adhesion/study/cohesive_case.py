@@ -43,6 +43,9 @@ from .case_input import API_NAMES, CaseInput, case_input
 
 ADHESIONS = ("energy", "dugdale")
 K_OVER_C10 = 32.0 / 3.0       # K = 4 E* / 3 with E* = 8 C10 (incompressible neo-Hookean)
+APPROACH_MAX = 0.5   # deepest approach / R without an explicit delta_max (and at most the
+#                      domain's, solver.geometry.delta_bound): it turns at the contact radius
+#                      the pull-off needs well before; its step bound scales with it
 ZONE_EDGES_MIN = 2.0          # fewer outer edges across the cohesive zone: a warning
 # outer elements across the cohesive zone Maugis expects at the pull-off on the requested
 # mesh (its next coarser mesh, the error bar's, has half as many): where the named mesh's
@@ -242,7 +245,8 @@ def solve_checked(inp: CohesiveInput, error_bars=True, progress=False,
     a_need = a_star_estimate(cap, g)
     zone = zone_estimate(g, inp.tabor)
     fit = dict(uniform=even_arc(cap, a_need),
-               delta_max=delta_bound(cap) if c.delta_max_mm is None else c.delta_max_mm / c.R_mm,
+               delta_max=(min(delta_bound(cap), APPROACH_MAX) if c.delta_max_mm is None
+                          else c.delta_max_mm / c.R_mm),
                a_turn=None if c.delta_max_mm is not None else TURN * a_need,
                refine=zone_refinement(zone, c.mesh))
     units = (c.R_mm, c.C10_MPa) if progress else None

@@ -2,9 +2,9 @@
 (the paper's "buckling").  Found case: t/R = 0.02, h/R = 1, coarse mesh, no-slip: loaded to
 delta = 0.05 R, the relaxation paths held at a/R = 0.046 to 0.100 have their centre pulled
 off the plane at delta/R = -0.09 to -0.26 (0.092 and -0.23 before relaxation steps were
-kept energy-consistent: the path held at 0.100 R then stopped just short of its lift).  They are reported (where, and on which paths)
-and serve the energy method up to their inversion (issue 21); equilibrium points that
-bridge a path left out entirely are flagged."""
+kept energy-consistent: the path held at 0.100 R then stopped just short of its lift).
+They are reported (where, and on which paths) and serve the energy method up to their
+inversion (issue 21); equilibrium points that bridge a path left out entirely are flagged."""
 import numpy as np
 import pytest
 
@@ -97,3 +97,4 @@ def test_the_flattened_hemisphere_is_refused_for_its_physics():
     assert "relaxation paths held beyond it" in p["reason"] and "invert" in p["reason"]
     assert res["provenance"]["loading_reached"]["delta_reached_mm"] == pytest.approx(18.0)
     assert res["provenance"]["inversion"]["inverted_relaxation_paths"] >= 10
+    assert "0.9 of the cap's depth h" in p["reason"]     # the depth is geometry, not a default

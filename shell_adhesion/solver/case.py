@@ -17,7 +17,7 @@ from shell_adhesion.energy import (Bridged, EnergySurface, InGradedZone, NotBrac
                                    energy_surface, equilibrium, pull_off)
 from .forms import Discretisation, discretise
 from .contact import check_interface
-from .geometry import GAMMA_MAX, Cap, check_delta_max, check_gamma, shown
+from .geometry import DEPTH_SHARE, GAMMA_MAX, Cap, check_delta_max, check_gamma, shown
 from shell_adhesion.errors import InputError
 from .material import NEO_HOOKE, Material
 from .mesh import CapMesh, cap_mesh, mesh_spec, uniform_radius
@@ -310,6 +310,9 @@ class PathSet:
                     f"gamma, and the energy method of a contact disc ends at an inversion")
         if not self.stats.get("loading_reached_a", False):
             stop = self.stats.get("loading_stopped_by") or "its depth bound delta_max"
+            at_depth = self.delta_max >= DEPTH_SHARE * self.h * (1 - 1e-9)
+            if stop.startswith("its depth") and at_depth:
+                stop += f" ({DEPTH_SHARE:g} of the cap's depth h: the rim nears the plane)"
             why += (f"; the loading (no adhesion) ended at delta = "
                     f"{self.stats.get('delta_reached', self.loading_delta[-1]):.4g} R "
                     f"with the contact radius a = {self.loading_a[-1]:.4g} R "

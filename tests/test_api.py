@@ -221,8 +221,10 @@ def test_error_bars_beside_every_number(solved):
     """Issue 10 item 7, issue 21 item 7: every headline number and the loading P carry the
     error estimate of solver.error_bars from the same shell on the next two coarser meshes
     (the observed order where the three converge, beside it as "<name>_order")."""
-    from shell_adhesion.solver.error_bars import error_bar, observed_order
+    from shell_adhesion.solver.error_bars import (error_bar, observed_order,
+                                                   refines_through_thickness)
     out = solved.to_dict(curves=True)
+    observable = refines_through_thickness(solved.input.t_mm / solved.input.R_mm, "coarse")
     assert (solved.coarser.mesh, solved.coarsest.mesh) == ("coarser", "coarsest")
     assert out["provenance"]["error_bars"]["coarser_meshes"] == ["coarser", "coarsest"]
     for po, (_, _, c1), c2, c3 in zip(out["pull_off"], solved.adhesion,
@@ -233,8 +235,9 @@ def test_error_bars_beside_every_number(solved):
             dim = ((lambda x: force_N(x, 0.3, 20)) if name == "P_N"
                    else (lambda x: length_mm(x, 20)))
             value, coarser, coarsest = (dim(getattr(c, key)) for c in (c1, c2, c3))
-            assert err == pytest.approx(float(error_bar(value, coarser, coarsest)), rel=1e-6)
-            order = observed_order(value, coarser, coarsest)
+            assert err == pytest.approx(float(error_bar(value, coarser, coarsest, observable)),
+                                        rel=1e-6)
+            order = observed_order(value, coarser, coarsest, observable)
             assert (po[group][f"{name}_order"] is None) == bool(np.isnan(order))
             assert 0 < err < 0.1 * abs(value)      # coarse mesh: a few per cent
         assert po["eta_error"] > 0 and "a0_mm_error" in po

@@ -27,11 +27,44 @@ def test_rule():
     assert observed_order(1.0, 1.01, 1.05) == pytest.approx(2.0)
     assert error_bar(1.0, 1.01, 1.05) == pytest.approx(SAFETY_OBSERVED * 0.01 / 3)
     # not monotone (the differences change sign), or an order beyond OBSERVED_ORDERS:
-    # back to order 1 with factor 3
-    for coarsest in (0.99, 1.0101, 1.01 + 0.01 * 2 ** 5):
+    # back to order 1 with factor 3, on the larger of the finer difference and the coarser
+    # one carried to the finer mesh at order 1
+    for coarsest, step in ((0.99, 0.01), (1.0101, 0.01), (0.98, 0.015),
+                           (1.01 + 0.01 * 2 ** 5, 0.01 * 2 ** 4)):
         assert np.isnan(observed_order(1.0, 1.01, coarsest))
-        assert error_bar(1.0, 1.01, coarsest) == pytest.approx(SAFETY * 0.01)
+        assert error_bar(1.0, 1.01, coarsest) == pytest.approx(SAFETY * step)
     assert error_bar(1.0, 1.01, np.nan) == pytest.approx(SAFETY * 0.01)  # two suffice
+    # a family whose steps do not all refine every direction: no order is observed
+    assert np.isnan(observed_order(1.0, 1.01, 1.05, order_observable=False))
+    assert error_bar(1.0, 1.01, 1.05, False) == pytest.approx(SAFETY * 0.02)
+
+
+def test_values_that_cross_get_the_error_of_the_coarser_step():
+    """t/R 0.02, h/R 0.2, gamma/(C10 R) 0.015 (P*/(C10 R^2) on the coarser, coarse,
+    default and fine meshes, measured): the default mesh's value nearly equals the coarse
+    one's, so their difference alone (the rule before) gave a bar of 0.06 % and the fine
+    mesh lay 5.5 bars away; with the coarser step it holds the fine mesh."""
+    coarser, coarse, default, fine = -0.065719, -0.065516, -0.065528, -0.065731
+    assert SAFETY * abs(default - coarse) < abs(fine - default) / 5
+    bar = error_bar(default, coarse, coarser)
+    assert abs(fine - default) < bar < 0.01 * abs(default)
+
+
+def test_an_order_is_observed_only_where_each_step_adds_layers_through_the_thickness():
+    from shell_adhesion.solver.error_bars import refines_through_thickness
+    from shell_adhesion.solver.mesh import mesh_spec, thickness_layers
+
+    def layers(t, mesh):
+        return len(thickness_layers(t, mesh_spec(mesh))) - 1
+    # the thinnest shell: 1, 1, 2 layers on coarser, coarse, default; 4 on fine
+    assert [layers(0.02, m) for m in ("coarser", "coarse", "default", "fine")] == [1, 1, 2, 4]
+    assert not refines_through_thickness(0.02, "default")
+    assert refines_through_thickness(0.02, "fine")
+    # the base shell: 3, 4, 7
+    assert [layers(0.15, m) for m in ("coarser", "coarse", "default")] == [3, 4, 7]
+    assert refines_through_thickness(0.15, "default")
+    assert refines_through_thickness(1.0, "coarse")          # a solid cap
+    assert not refines_through_thickness(0.15, "coarser")    # no third mesh below it
     e = curve_error([0.0, 0.5, 2.0], [0.0, 1.0, 4.0], [0.0, 1.0], [0.0, 2.2])
     assert e[0] == 0 and e[1] == pytest.approx(error_bar(1.0, 1.1)) and np.isnan(e[2])
 

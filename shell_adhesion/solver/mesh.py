@@ -93,6 +93,12 @@ def graded(length, h0, growth, hmax, uniform=0.0):
     return np.concatenate([[0.0], np.cumsum(sizes)])
 
 
+def thickness_layers(t: float, spec: MeshSpec) -> np.ndarray:
+    """Depths / R below the outer surface of the element-layer boundaries through a shell
+    of thickness t / R (0 ... t)."""
+    return graded(t, spec.layer0, spec.layer_growth, min(spec.layer_max, t / 2))
+
+
 def with_midpoints(x):
     """Q2 parameter positions: corners and midpoints."""
     out = np.empty(2 * len(x) - 1)
@@ -104,8 +110,7 @@ def with_midpoints(x):
 def _shell_block(cap, spec):
     theta = graded(cap.theta_outer, spec.h_apex, spec.growth, spec.h_max, uniform_arc(cap, spec))
     sigma = with_midpoints(theta / cap.theta_outer)
-    depth = with_midpoints(graded(cap.t, spec.layer0, spec.layer_growth,
-                                  min(spec.layer_max, cap.t / 2)))
+    depth = with_midpoints(thickness_layers(cap.t, spec))
     rho = 1.0 - depth
     th = sigma[:, None] * np.arccos((1.0 - cap.h) / rho)[None, :]
     return np.stack([rho * np.sin(th), 1.0 - rho * np.cos(th)], axis=-1)

@@ -10,7 +10,8 @@ import xarray as xr
 
 from shell_adhesion.cube import CURVES, PULL_OFF     # the cube's names, units and long names
 from shell_adhesion import theory
-from shell_adhesion.solver.error_bars import curve_error, error_bar, observed_order
+from shell_adhesion.solver.error_bars import (curve_error, error_bar, observed_order,
+                                               refines_through_thickness)
 from shell_adhesion.solver.scaling import energy_mJ, force_N, length_mm
 
 from .case_input import cavity_kPa, material_MPa
@@ -49,6 +50,7 @@ def _values(result):
     coarsest = dict(zip(answered, result.coarsest_pull_off or ()))
     refused = dict(result.refused)
     conv = dict(force=F, length=L)
+    observable = refines_through_thickness(inp.t_mm / R, inp.mesh)
 
     def dimensional(po, g):
         if po is None:
@@ -75,8 +77,8 @@ def _values(result):
             for k in (*PULL_OFF, "eta"):
                 x2 = np.nan if c2 is None else c2[k]
                 x3 = None if c3 is None else c3[k]
-                values[f"{k}_error"] = float(error_bar(values[k], x2, x3))
-                values[f"{k}_order"] = (float(observed_order(values[k], x2, x3))
+                values[f"{k}_error"] = float(error_bar(values[k], x2, x3, observable))
+                values[f"{k}_order"] = (float(observed_order(values[k], x2, x3, observable))
                                         if x3 is not None else np.nan)
         values["jkr_P_star"] = theory.jkr_P_star_N(R, g)
         adhesion.append((g, values, curve))

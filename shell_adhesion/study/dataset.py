@@ -57,7 +57,8 @@ from shell_adhesion.cube import (CURVE_COORDS, CURVES, DIMS, GAMMA_UNITS, PULL_O
                                  study_attrs)
 from shell_adhesion.solver import case, request
 from shell_adhesion.solver.cavity import P_ATM_KPA
-from shell_adhesion.solver.error_bars import curve_error, error_bar, observed_order
+from shell_adhesion.solver.error_bars import (curve_error, error_bar, observed_order,
+                                               refines_through_thickness)
 from shell_adhesion.solver.material import NEO_HOOKE
 from shell_adhesion.solver.scaling import energy_mJ, force_N, gamma_hat, length_mm
 from shell_adhesion.theory import eta_of
@@ -283,17 +284,18 @@ def _short(key) -> tuple:
     return key[:2] + tuple(key[3:])
 
 
-def _errors(values, coarser, coarsest=None) -> dict:
+def _errors(values, coarser, coarsest=None, observable=True) -> dict:
     """`<name>_error` of each pull-off value and eta from the next coarser mesh's values
-    (and the one after it's: Richardson where the three converge), and `<name>_order`, the
-    order observed on the three meshes (NaN where the two-mesh rule of order 1 is used:
-    solver.error_bars)."""
+    (and the one after it's: Richardson where the three converge and the family's steps
+    are `observable`), and `<name>_order`, the order observed on the three meshes (NaN
+    where the rule of order 1 is used: solver.error_bars)."""
     out = {}
     for k, v in values.items():
         c3 = coarsest[k] if coarsest else None
-        out[f"{k}_error"] = float(error_bar(v, coarser[k], c3)) if coarser else np.nan
-        out[f"{k}_order"] = (float(observed_order(v, coarser[k], c3)) if coarser and coarsest
+        out[f"{k}_error"] = (float(error_bar(v, coarser[k], c3, observable)) if coarser
                              else np.nan)
+        out[f"{k}_order"] = (float(observed_order(v, coarser[k], c3, observable))
+                             if coarser and coarsest else np.nan)
     return out
 
 
@@ -352,7 +354,8 @@ def _build(plan: Plan, served: dict, failed: dict, history: str, material) -> xr
                     (c2, why2), (c3, why3) = (companion(level, sets, (t, h), C10, gamma, t)
                                               for level, sets in (("coarser", coarser),
                                                                   ("coarsest", coarsest)))
-                    results[i][0].update(_errors(results[i][0], c2, c3))
+                    results[i][0].update(_errors(
+                        results[i][0], c2, c3, refines_through_thickness(t, study.mesh)))
                     notes[i] = "; ".join(w for w in (why2, why3) if w)
             except ValueError as e:     # shell_adhesion.energy.OutOfRange and gamma > gamma_max
                 status[i], reason[i] = "out of range", str(e)

@@ -236,6 +236,30 @@ class PullOffMap:
         return f"the map has no pull-off at its grid point {at}" + (
             f" ({reason})" if reason else "") + "; solve this shell with `case`"
 
+    def survey(self, n: int = 3000, gamma_hat=(1e-3, 0.03), seed: int = 0) -> dict:
+        """P*'s stated errors at `n` shells drawn uniformly in (ln t/R, h/R, ln gamma_hat)
+        over the map and the gamma_hat range: arrays (percent of P*) of the interpolation
+        and total errors, the shells' t/R and gamma_hat, the count that needs a hole, and
+        the FE error bars of the grid points (percent of P*)."""
+        rng = np.random.default_rng(seed)
+        (tl, th), (hl, hh) = self.bounds["t_over_R"], self.bounds["h_over_R"]
+        rows, holes = [], 0
+        for _ in range(n):
+            t = math.exp(rng.uniform(math.log(tl), math.log(th)))
+            h = rng.uniform(hl, hh)
+            g = math.exp(rng.uniform(math.log(gamma_hat[0]), math.log(gamma_hat[1])))
+            try:
+                a = self.predict(t, h, g)["P_star"]
+            except MapError:
+                holes += 1
+                continue
+            rows.append((t, g, 100 * a.interpolation_error / abs(a.value),
+                         100 * a.error / abs(a.value)))
+        t, g, interp, total = np.array(rows).reshape(-1, 4).T
+        fe = (100 * self.ds["P_star_error"] / abs(self.ds["P_star"])).values
+        return dict(t_over_R=t, gamma_hat=g, interpolation=interp, total=total, holes=holes,
+                    fe_grid=fe[np.isfinite(fe)])
+
     def shell(self, R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2) -> dict:
         """The answers in units: name_unit -> (value, error) with P in N, lengths in mm,
         error = interpolation and FE errors in quadrature."""

@@ -119,3 +119,17 @@ def test_search_finds_the_bound_of_a_monotone_map():
     assert "h at its lower bound 12 mm (your bound)" in best.on_bounds
     with pytest.raises(ValueError, match="objective: 'most' must be one of"):
         search(pm, 0.3, 30, "most", R_mm=20)
+
+
+def test_fe_error_is_the_grid_points_bars_with_the_interpolations_weights():
+    """Bars of 1 % on a P* linear in (ln t, h): the answer's FE error is the linear
+    interpolant of the bars, 1 % of the answer (a bound, the weights being >= 0 with sum
+    1), less than the largest bar of the cell, which a maximum over it would give."""
+    pm = PullOffMap(synthetic_map(lambda lt, h, lg: -1.5 + 0.2 * lt - 0.3 * h, P_error=0.01))
+    t, h, g = 0.13, 0.61, 0.0042
+    ans = pm.predict(t, h, g)["P_star"]
+    assert ans.fe_error == pytest.approx(0.01 * abs(ans.value), rel=1e-9)
+    i, j = np.searchsorted(T, t), np.searchsorted(H, h)
+    largest = math.pi * g * 0.01 * max(abs(-1.5 + 0.2 * math.log(T[a]) - 0.3 * H[b])
+                                       for a in (i - 1, i) for b in (j - 1, j))
+    assert ans.fe_error < 0.99 * largest

@@ -14,8 +14,11 @@ along which the thin-shell crossover runs.  Its error is estimated by leaving gr
 from its two neighbours along each axis, the same way; the miss gives the second
 derivative along that axis (of the parabola through the three points), and a linear
 interpolant's error in a cell of width s is at most s^2 |f''| / 8: summed over the axes,
-with the largest |f''| of the grid points the answer is made of.  An answer's error bar is that interpolation error and the FE error bar of
-the map's points, added in quadrature.
+with the largest |f''| of the grid points the answer is made of.  The FE error of an
+answer is the FE error bars of those grid points combined with the interpolation's
+weights: the weights are >= 0 and sum to 1, so where each point's error is within its
+bar, the answer's FE error is within that sum.  An answer's error bar is the
+interpolation error and the FE error, added in quadrature.
 """
 from dataclasses import dataclass
 import math
@@ -225,7 +228,7 @@ class PullOffMap:
                 continue
             value = self._combine(flat, stencil)
             interp = self._interpolation_error(self._curvature[q], stencil)
-            fe = self._worst(self._fe[q], stencil) if q in self._fe else math.nan
+            fe = self._combine(self._fe[q], stencil) if q in self._fe else math.nan
             answers[q] = Answer(*(_unflat(q, v, gamma_hat) for v in (value, interp, fe)))
         return answers
 

@@ -40,3 +40,40 @@ def test_the_driver_drops_the_start_states_it_sent(tmp_path, monkeypatch):
     # the logs of the client's comm and the two workers' hold a few messages each (8);
     # with dask's default of 1000 the driver held one start state per path
     assert held["states"] <= 30, (held["states"], paths)
+
+
+def test_the_driver_opens_a_bounded_number_of_shells_at_once(tmp_path, monkeypatch):
+    """Each open shell's relaxation tasks carry their start states until they run; with
+    every shell of a study open at once, the default-mesh map's driver grew to 23 GB.  On
+    one worker at most OPEN_SHELLS_PER_WORKER shells are open: a shell's first loading is
+    submitted only when fewer are in progress (counted from the driver's submissions and
+    its stores of finished path sets)."""
+    import distributed
+    from shell_adhesion.catalogue import Catalogue
+    events = []
+    submit, store = distributed.Client.submit, Catalogue.store
+
+    def submitting(self, fn, *args, key=None, **kwargs):
+        if key and key.startswith("loading-"):
+            events.append(("open", key.split("-")[1]))
+        return submit(self, fn, *args, key=key, **kwargs)
+
+    def storing(self, key, *args, **kwargs):
+        events.append(("close", None))
+        return store(self, key, *args, **kwargs)
+    monkeypatch.setattr(distributed.Client, "submit", submitting)
+    monkeypatch.setattr(Catalogue, "store", storing)
+    study = dict(STUDY, name="window", sweeps=dict(t_over_R=[0.1, 0.15, 0.2, 0.3, 0.4]))
+    outcome = run_module.execute(study, out=tmp_path / "out", catalogue=tmp_path / "cat",
+                                 progress=False, workers=1)
+    assert outcome.exit_code == 0 and len(outcome.computed) == 5
+    opened, in_progress, most = set(), 0, 0
+    for kind, shell in events:
+        if kind == "open" and shell not in opened:      # a refit loads its shell again
+            opened.add(shell)
+            in_progress += 1
+        elif kind == "close":
+            in_progress -= 1
+        most = max(most, in_progress)
+    assert len(opened) == 5
+    assert most == run_module.OPEN_SHELLS_PER_WORKER, events

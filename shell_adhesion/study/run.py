@@ -54,6 +54,11 @@ DEFAULT_OUT = "results"
 CONNECT_TIMEOUT_S = 10.0    # a scheduler that does not answer in this time is not there
 LOST_AFTER_S = 10.0         # a scheduler unreachable this long is lost
 CLOSE_TIMEOUT_S = 10.0      # shutting down the local cluster takes at most this (each part)
+# shells in progress at once, per worker: each open shell's relaxation tasks carry their
+# start states (displacement fields), held by the driver and the scheduler until they
+# run; with every shell open the default-mesh map (72 sets, ~6600 paths) grew the driver
+# to 23 GB and was killed for memory
+OPEN_SHELLS_PER_WORKER = 2
 
 STAGES = ("loading paths", "relaxation paths", "energy method", "cube")
 
@@ -319,6 +324,11 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
     owner = {}                  # future -> (job, relaxation index or None)
     pending = set()
 
+    def open_next():
+        job = waiting.pop()
+        job.t0 = time.perf_counter()
+        load(job)
+
     def load(job):
         s, fit = job.shell, job.fit
         f = client.submit(loading_task, s.t_over_R, s.h_over_R, st.interface, s.key["mesh"],
@@ -335,7 +345,10 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
         job = _Job(s, time.perf_counter(), initial_fit(cap, s.request))
         job.expected = shell_size(cap, job.fit, s.key["mesh"])[1]
         jobs.append(job)
-        load(job)
+    waiting = list(reversed(jobs))      # opened in order as others close
+    workers = len(client.scheduler_info().get("workers", {}))
+    for _ in range(min(len(waiting), OPEN_SHELLS_PER_WORKER * max(1, workers))):
+        open_next()
     n_shells = len(shells)
     shells_done = 0
     progress.start("loading paths")
@@ -368,6 +381,8 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
                 g.cancel()
                 owner.pop(g)
                 pending.discard(g)
+        if waiting:
+            open_next()
         progress.update("relaxation paths", shells_done, note=relax_note())
 
     def fail(job, reason):

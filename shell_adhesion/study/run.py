@@ -287,6 +287,7 @@ class _Job:
     known: dict = field(default_factory=dict)   # start_key -> Relaxation, on this mesh
     seconds: float = 0.0
     remaining: int = 0
+    opened: bool = False        # its first loading submitted (study.run: a bounded few at once)
     done: bool = False
     expected: int = 0           # relaxation paths the cost model expects before its loading
 
@@ -324,10 +325,15 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
     owner = {}                  # future -> (job, relaxation index or None)
     pending = set()
 
-    def open_next():
-        job = waiting.pop()
-        job.t0 = time.perf_counter()
-        load(job)
+    def open_more():
+        """Open waiting shells up to OPEN_SHELLS_PER_WORKER per worker (the workers of
+        now: an external cluster may grow)."""
+        workers = len(client.scheduler_info().get("workers", {}))
+        in_progress = sum(1 for j in jobs if j.opened and not j.done)
+        for _ in range(min(len(waiting), OPEN_SHELLS_PER_WORKER * max(1, workers) - in_progress)):
+            job = waiting.pop()
+            job.opened, job.t0 = True, time.perf_counter()
+            load(job)
 
     def load(job):
         s, fit = job.shell, job.fit
@@ -346,9 +352,7 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
         job.expected = shell_size(cap, job.fit, s.key["mesh"])[1]
         jobs.append(job)
     waiting = list(reversed(jobs))      # opened in order as others close
-    workers = len(client.scheduler_info().get("workers", {}))
-    for _ in range(min(len(waiting), OPEN_SHELLS_PER_WORKER * max(1, workers))):
-        open_next()
+    open_more()
     n_shells = len(shells)
     shells_done = 0
     progress.start("loading paths")
@@ -381,8 +385,7 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
                 g.cancel()
                 owner.pop(g)
                 pending.discard(g)
-        if waiting:
-            open_next()
+        open_more()
         progress.update("relaxation paths", shells_done, note=relax_note())
 
     def fail(job, reason):

@@ -64,7 +64,7 @@ def test_the_thinnest_shallowest_cap_agrees_with_the_fine_mesh(cells):
     dofs, about 7 minutes).  Its coarse meshes keep their layers through the thickness and
     the default mesh's value crosses the coarse one's at 0.015, where the error bar of the
     finer difference alone was 0.06 % and the fine mesh 0.31 % away.  Measured: 0.15,
-    0.44, 0.67 and 0.51 error bars (fine -0.6430, -3.0748, -7.8877, -13.634 N)."""
+    0.45, 0.66 and 0.51 error bars (fine -0.6430, -3.0748, -7.8877, -13.634 N)."""
     _holds_the_fine_mesh(cells, 0.02, 0.2, (0.001, 0.005, 0.015, 0.03))
 
 
@@ -73,8 +73,8 @@ def test_the_thinnest_half_cap_agrees_with_the_fine_mesh(cells):
     meshes converged with observed orders 2.5 to 3.5, whose error bars were 0.00 to 0.02 %
     of P*, while the fine mesh (21,507 dofs, about half an hour) lies 0.08 to 0.13 % away.
     Its coarse meshes keep their layers through the thickness, so no order is observed
-    now and the bars are 1.0, 0.59, 0.16 and 0.094 %.  Measured: 0.12, 0.14, 0.52 and 0.88 error bars (fine
-    -0.60517, -3.2697, -9.5407, -17.546 N)."""
+    now and the bars are 1.0, 0.59, 0.16 and 0.094 %.  Measured: 0.12, 0.14, 0.52 and
+    0.88 error bars (fine -0.60517, -3.2697, -9.5407, -17.546 N)."""
     _holds_the_fine_mesh(cells, 0.02, 0.5, (0.001, 0.005, 0.015, 0.03))
 
 

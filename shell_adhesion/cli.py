@@ -344,24 +344,48 @@ _workers = _integer(1, 4096)
 
 def _run_study(ns):
     """`run`: the study through study.run.run_study (one orchestration for API and CLI)."""
+    from shell_adhesion.study.run import dry_run, exit_code, run_study
+
+    if ns.dry_run:
+        return _guarded_study(ns, lambda: print(dry_run(ns.study, ns.catalogue, ns.workers,
+                                                         ns.scheduler)), lambda _: 0)
+    return _guarded_study(ns, lambda: run_study(ns.study, out=ns.out, catalogue=ns.catalogue,
+                                                scheduler=ns.scheduler,
+                                                progress=not ns.quiet, workers=ns.workers),
+                          exit_code)
+
+
+def _build_map(ns):
+    """`map build`: a map study through the same orchestration and exit rules as `run`."""
+    from shell_adhesion.study.pull_off_map import build_pull_off_map
+
+    out = map_commands.map_file(ns.out)
+
+    def built(path):
+        print(f"map written to {path}")
+        return 0
+    return _guarded_study(ns, lambda: build_pull_off_map(
+        ns.study, out, catalogue=ns.catalogue, workers=ns.workers, scheduler=ns.scheduler),
+        built)
+
+
+def _guarded_study(ns, compute, code_of):
+    """Run `compute()` (a study on dask) under the command line's rules and return
+    `code_of(its value)`: bad input 2 (one line), a lost scheduler 1, Ctrl-C 130 (one line
+    saying what is kept, the shutdown bounded by HARD_EXIT_S)."""
     from shell_adhesion.catalogue import default_dir
 
     from shell_adhesion.study import interrupt
     from shell_adhesion.study.config import StudyError
-    from shell_adhesion.study.run import (Interrupted, RunInputError, SchedulerLost, dry_run,
-                                          exit_code, run_study)
+    from shell_adhesion.study.run import Interrupted, RunInputError, SchedulerLost
 
+    kept_in = ns.catalogue if ns.catalogue is not None else default_dir()
     try:
-        if ns.dry_run:
-            print(dry_run(ns.study, ns.catalogue, ns.workers, ns.scheduler))
-            return 0
-        kept_in = ns.catalogue if ns.catalogue is not None else default_dir()
         with interrupt.hard_exit_after(
                 HARD_EXIT_S, "shell-adhesion: interrupted: the relaxation paths finished and "
                 f"are kept in the catalogue {kept_in} (shutting down took over "
                 f"{HARD_EXIT_S:g} s and was cut short); run again to resume"):
-            ds = run_study(ns.study, out=ns.out, catalogue=ns.catalogue,
-                           scheduler=ns.scheduler, progress=not ns.quiet, workers=ns.workers)
+            value = compute()
     except RunInputError as e:
         print(f"shell-adhesion: error: {e.flag}: {e.detail}", file=sys.stderr)
         return 2
@@ -377,7 +401,7 @@ def _run_study(ns):
     except KeyboardInterrupt:
         print("shell-adhesion: interrupted before any FE work started", file=sys.stderr)
         return 130
-    return exit_code(ds)
+    return code_of(value)
 
 
 def _run_tables(ns):
@@ -621,7 +645,8 @@ def main(argv=None):
     """The `shell-adhesion` command; returns the exit code (0 ok, 1 failed, 2 bad input)."""
     ns = _parser().parse_args(argv)
     try:
-        if ns.command in ("run", "catalogue"):
+        building_map = ns.command == "map" and ns.map_action == "build"
+        if ns.command in ("run", "catalogue") or building_map:
             _check_catalogue(ns)
         if ns.command == "case":
             return _run_case(ns)
@@ -639,6 +664,8 @@ def main(argv=None):
             return _run_catalogue(ns)
         if ns.command == "example":
             return _run_example(ns)
+        if building_map:
+            return _build_map(ns)
         if ns.command in ("map", "design"):
             return map_commands.run(ns)
     except InputError as err:

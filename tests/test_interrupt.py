@@ -94,3 +94,51 @@ def test_a_hung_shutdown_after_ctrl_c_still_ends_in_one_line(tmp_path):
     lines = err.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("shell-adhesion: interrupted: "), err
     assert "cut short" in lines[0] and "run again" in lines[0]
+
+
+# a map build whose computing loop is interrupted (as study.run._execute ends on Ctrl-C)
+INTERRUPTED_BUILD = textwrap.dedent("""
+    import sys
+    import time
+    from shell_adhesion import cli
+    from shell_adhesion.study import run
+
+    def interrupted(*args, **kwargs):
+        try:
+            print("running", flush=True)
+            time.sleep(600)
+        except KeyboardInterrupt:
+            raise run.Interrupted("interrupted: 3 relaxation paths finished and are kept in "
+                                  "the catalogue CAT; run again to resume") from None
+
+    run._execute = interrupted
+    sys.exit(cli.main(sys.argv[1:]))
+""")
+
+
+def test_ctrl_c_in_map_build_ends_in_one_line(tmp_path):
+    """`map build` runs a study and ends on Ctrl-C as `run` does: exit 130, one line
+    saying what is kept, no traceback and no map file."""
+    study = tmp_path / "m.yaml"
+    study.write_text("name: m\nR_mm: 20\nbase: {C10_MPa: 1.0}\ngrid: {t_over_R: [0.1, 0.15], "
+                     "h_over_R: [0.5, 1.0], gamma_J_m2: [10, 20]}\nmesh: coarse\n")
+    out = tmp_path / "m.nc"
+    proc = subprocess.Popen([sys.executable, "-c", INTERRUPTED_BUILD, "map", "build",
+                             str(study), "--out", str(out), "--catalogue",
+                             str(tmp_path / "cat")], cwd=REPO, env=ENV,
+                            start_new_session=True, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    try:
+        assert proc.stdout.readline().strip() == "running"
+        os.killpg(proc.pid, signal.SIGINT)
+        _, err = proc.communicate(timeout=60)
+    finally:
+        try:
+            os.killpg(proc.pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+    assert proc.returncode == 130, err
+    lines = err.strip().splitlines()
+    assert lines == ["shell-adhesion: interrupted: 3 relaxation paths finished and are kept "
+                     "in the catalogue CAT; run again to resume"], err
+    assert not out.exists() and not out.with_suffix(".nc.part").exists()

@@ -7,6 +7,7 @@
         [--t MIN MAX] [--h MIN MAX] [--no-confirm] [--json]
 
 Bad input: one line naming the flag, the value and the rule, exit 2, before any work.
+`map build` runs a study and follows `run`'s rules (cli: Ctrl-C exits 130 in one line).
 """
 import argparse
 import json
@@ -15,8 +16,7 @@ import math
 from shell_adhesion.analysis.design_search import OBJECTIVES
 from shell_adhesion.analysis.pull_off_map import MapError
 from shell_adhesion.errors import InputError
-from shell_adhesion.study.pull_off_map import (DEFAULT_MAP, SHIPPED, build_pull_off_map,
-                                               pull_off_map)
+from shell_adhesion.study.pull_off_map import DEFAULT_MAP, SHIPPED, pull_off_map
 
 NAMES = (("P_star_N", "P*"), ("delta_star_mm", "delta*"), ("a_star_mm", "a*"),
          ("P_dagger_N", "P_dagger"), ("delta_dagger_mm", "delta_dagger"),
@@ -113,13 +113,11 @@ def _open(map_name):
 
 
 def run(ns) -> int:
-    """Run `map ...` or `design`; the exit code."""
+    """Run `map query|plot` or `design` (`map build` runs a study: cli); the exit code."""
     if ns.command == "design":
         return _design(ns)
     if ns.map_action == "query":
         return _query(ns)
-    if ns.map_action == "build":
-        return _build(ns)
     return _plot(ns)
 
 
@@ -168,15 +166,13 @@ def check_on_map(pm, R, t, h, C10, gamma):
                              f"{hi * scale:.4g} {unit} for this shell)")
 
 
-def _build(ns):
+def map_file(text):
+    """The `--out` of `map build` as a Path: a netCDF file (.nc)."""
     from pathlib import Path
-    out = Path(ns.out)
+    out = Path(text)
     if out.suffix != ".nc":
-        raise InputError(f"--out: {ns.out}: the map file must end in .nc (netCDF)")
-    path = build_pull_off_map(ns.study, out, catalogue=ns.catalogue, workers=ns.workers,
-                              scheduler=ns.scheduler)
-    print(f"map written to {path}")
-    return 0
+        raise InputError(f"--out: {text}: the map file must end in .nc (netCDF)")
+    return out
 
 
 def _plot(ns):

@@ -153,3 +153,23 @@ def test_the_fitted_family_keeps_its_ratio():
     # a zone the named mesh resolves leaves it as it is
     assert cc.zone_refinement(1.0, "default") == 1.0
     assert cc.fitted_spec("default", dict(uniform=0.15, refine=1.0)) == mesh_spec("default", 0.15)
+
+
+def test_a_long_range_pull_off_is_resolved_where_the_contact_is_lost():
+    """At small lambda P(delta) has a corner at its least P (where the compressive contact
+    ends, the slope jumps from about +90 to -42 N per unit delta/R on the solid cap at
+    lambda 0.1): the retraction's steps, 0.1 delta_max there, sampled it coarsely and
+    the two meshes missed it differently (P* -3.4555 +- 0.244 N, a* 0.27 +- 1.15 mm).  A
+    step that passes a new least P is halved until P varies across it by at most
+    ArcSettings.P_resolve |P|: measured P* -3.5340 +- 0.0050 N, a* 0.584 +- 0.0033 mm."""
+    r = cc.solve_cohesive_case(R_mm=20, t_mm=20, h_mm=20, C10_MPa=0.3, gamma_J_m2=30,
+                               tabor=0.1, mesh="coarse")
+    po = r.to_dict()["pull_off"]
+    print({k: po[k] for k in ("P_star_N", "P_star_N_error", "a_star_mm", "a_star_mm_error")})
+    assert po["P_star_N_error"] <= 0.005 * abs(po["P_star_N"])
+    assert po["a_star_mm_error"] <= 0.02 * po["a_star_mm"]
+    # the least P is resolved on the traced path: its neighbours lie within 2 P_resolve
+    states = r.solve.path.states[r.solve.path.turn:]
+    P = np.array([s.P for s in states])
+    i = int(np.argmin(P))
+    assert np.all(np.abs(P[[i - 1, i + 1]] / P[i] - 1) <= 2 * arclength.ArcSettings().P_resolve)

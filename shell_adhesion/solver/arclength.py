@@ -53,6 +53,9 @@ class ArcSettings:
     grow: float = 1.5          # step growth after an easy step
     easy: int = 4              # ... one of at most this many Newton iterations
     cos_min: float = 0.9       # least cosine between the tangents of consecutive states
+    P_resolve: float = 1e-3    # a retraction step passing a new least P is halved until
+    #                            |dP/ds| ds <= P_resolve |P| at both its ends
+    max_resolve: int = 20      # ... at most this many times for one least P
 
 
 @dataclass(frozen=True, eq=False)
@@ -188,6 +191,7 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
     states = [_state(cn, x, delta, K, r, t, 0)]
     ds = 0.1 * law.delta_c
     turn = -1
+    least, halvings = math.inf, 0        # the least P of the retraction so far
     ended_by = f"step limit: {s.max_steps} states"
     outer_z = d.uz(d.capmesh.outer[cn.candidates])
     while len(states) < s.max_steps:
@@ -203,15 +207,22 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
                 # to another part of the path (a fold passed, or the branch behind)
                 raise ConvergenceError(f"the tangent turned by more than "
                                        f"{math.degrees(math.acos(s.cos_min)):.0f} degrees")
-            t = t_new
         except ConvergenceError as err:
             ds *= 0.5
             if ds < s.ds_min:
                 ended_by = f"step length below {s.ds_min:g} at delta = {delta:.6g} R ({err})"
                 break
             continue
-        x, delta = x_new, d_new
-        states.append(_state(cn, x, delta, K, r, t, it))
+        state = _state(cn, x_new, d_new, K, r, t_new, it)
+        if (turn >= 0 and halvings < s.max_resolve and len(states) - 1 > turn
+                and _passes_least(states[-1], state, least, ds, s)):
+            ds *= 0.5               # resolve the least P: a corner where the contact is lost
+            halvings += 1
+            continue
+        if state.P < least:
+            least, halvings = state.P, 0
+        t, x, delta = t_new, x_new, d_new
+        states.append(state)
         if progress is not None:
             progress(states[-1])
         if it <= s.easy:
@@ -221,6 +232,7 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
                          or a_turn is not None and states[-1].a >= a_turn and t[1] > 0):
             turn = len(states) - 1
             t = (-t[0], -t[1])
+            least = states[-1].P
         elif turn >= 0 and gaps(d, x, cn.candidates).min() > law.reach:
             ended_by = "left the cohesive range"
             break
@@ -241,6 +253,16 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
                     ended_by = f"no tangent after the stuck nodes changed ({err})"
                     break
     return ArcPath(tuple(states), turn, ended_by, cn.timer)
+
+
+def _passes_least(old: ArcState, new: ArcState, least: float, ds: float,
+                  s: ArcSettings) -> bool:
+    """True if the retraction step from `old` to `new` (arc length ds) passes a least P
+    (dP/ds turns from < 0 to > 0) at or below `least`, the least P of the retraction so
+    far, and P may vary across it by more than s.P_resolve |P| (|dP/ds| ds at either end)."""
+    if not (old.slope[1] < 0 < new.slope[1] and min(old.P, new.P) <= least):
+        return False
+    return max(abs(old.slope[1]), abs(new.slope[1])) * ds > s.P_resolve * abs(min(old.P, new.P))
 
 
 def held_radially(d, base: Constraints, outer_index) -> Constraints:

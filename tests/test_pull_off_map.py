@@ -26,7 +26,7 @@ INTERPOLATION_MAX = 0.02    # the map's interpolation error, relative to P*, at 
 # docs/map.md: each map's misses against cases on its mesh there [%], its stated errors [%]
 # (interpolation and FE in quadrature) and their interpolation parts [%]
 DOC = {"coarse": dict(misses=(+0.18, -0.49, -0.46, -0.53, -0.22), stated=(1.4, 1.7, 2.5, 1.9, 1.3)),
-       "default": dict(misses=(+0.15, -0.21, +0.06, -0.14, -0.29), stated=(1.3, 0.9, 0.8, 0.8, 1.1),
+       "default": dict(misses=(+0.12, -0.21, +0.06, -0.14, -0.29), stated=(1.4, 0.9, 0.8, 1.0, 1.1),
                        interpolation=(1.3, 0.6, 0.3, 0.7, 0.9))}
 
 
@@ -79,28 +79,28 @@ def test_default_map_against_default_cases_off_its_grid():
 
 def test_the_maps_errors_as_the_docs_state_them():
     """docs/map.md's interpolation errors of the shipped default map over gamma/(C10 R)
-    0.001-0.03: 3000 shells drawn uniformly in (ln t/R, h/R, ln gamma/(C10 R)), seed 0;
-    those that need one of its holes are refused by name and counted
-    (`python benchmarks/map_errors.py` prints the same)."""
+    0.001-0.03: 3000 shells drawn uniformly in (ln t/R, h/R, ln gamma/(C10 R)), seed 0,
+    none refused: the map has no holes (`python benchmarks/map_errors.py` prints the
+    same)."""
     pm = pull_off_map()
-    with pytest.raises(ValueError, match="no pull-off at its grid point t_over_R 0.05, h_over_R 0.5"):
-        pm.predict(0.05, 0.5, 0.02)
+    assert not (pm.ds["reason"] != "").any(), "a grid point of the shipped map failed"
+    assert math.isfinite(pm.predict(0.05, 0.5, 0.02)["P_star"].value)     # a hole before
     s = pm.survey()
     t, g, interp, total = s["t_over_R"], s["gamma_hat"], s["interpolation"], s["total"]
-    within("shells that need a hole", s["holes"], 81, 0.0, floor=0.5)
+    assert s["holes"] == 0
     within("median interpolation error [%]", np.median(interp), 0.8, 0.0, floor=0.1)
-    within("p90 interpolation error [%]", np.percentile(interp, 90), 2.9, 0.0, floor=0.1)
+    within("p90 interpolation error [%]", np.percentile(interp, 90), 2.3, 0.0, floor=0.1)
     within("largest interpolation error [%]", interp.max(), 7.5, 0.0, floor=0.1)
-    within("share below 2 % [%]", 100 * np.mean(interp < 2), 86, 0.0, floor=1)
+    within("share below 2 % [%]", 100 * np.mean(interp < 2), 89, 0.0, floor=1)
     band = (t >= 0.1) & (t < 0.2)
     within("share above 2 % at t/R 0.1-0.2 [%]", 100 * np.mean(interp[band] > 2), 18, 0.0, floor=1)
-    within("share above 2 % at gamma_hat > 0.01 [%]", 100 * np.mean(interp[g > 0.01] > 2), 24,
+    within("share above 2 % at gamma_hat > 0.01 [%]", 100 * np.mean(interp[g > 0.01] > 2), 18,
            0.0, floor=1)
-    within("median total error [%]", np.median(total), 1.1, 0.0, floor=0.1)
+    within("median total error [%]", np.median(total), 1.2, 0.0, floor=0.1)
     # the FE part: grid points whose error bar is above 2 % of P*, and the largest
     fe = s["fe_grid"]
-    within("grid points with an FE error bar above 2 % [%]", np.mean(fe > 2) * 100, 14, 0.0, floor=1)
-    within("largest FE error bar [%]", fe.max(), 4.9, 0.0, floor=0.1)
+    within("grid points with an FE error bar above 2 % [%]", np.mean(fe > 2) * 100, 20, 0.0, floor=1)
+    within("largest FE error bar [%]", fe.max(), 5.55, 0.0, floor=0.1)
 
 
 def test_the_coarse_maps_fe_error_bars_as_the_docs_state_them():

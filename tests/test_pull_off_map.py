@@ -165,6 +165,21 @@ def test_bad_input_is_one_line_and_exit_2(args, message, capsys, tmp_path, monke
     assert list(tmp_path.iterdir()) == []
 
 
+def test_a_bad_map_study_is_one_line_and_exit_2(capsys, tmp_path, monkeypatch):
+    """`map build` checks its study as `run` does: one line naming the field, exit 2,
+    nothing created (no catalogue, no map, no study folder)."""
+    study = tmp_path / "map.yaml"
+    study.write_text("name: m\nR_mm: 20\nbase: {C10_MPa: -1}\n"
+                     "grid: {t_over_R: [0.1], h_over_R: [1.0], gamma_J_m2: [10]}\n")
+    work = tmp_path / "work"
+    work.mkdir()
+    monkeypatch.chdir(work)
+    assert main(["map", "build", str(study), "--out", "m.nc", "--catalogue", "cat"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err == f"shell-adhesion: error: {study}: base.C10_MPa: -1 must be > 0", err
+    assert list(work.iterdir()) == []
+
+
 def test_query_answers_in_units_with_error_bars(capsys):
     assert main(["map", "query", "--R", "20", "--t", "3", "--h", "15", "--C10", "0.3",
                  "--gamma", "30", "--gamma", "60", "--map", "coarse", "--json"]) == 0

@@ -1,14 +1,17 @@
 """Cohesive (Maugis-Dugdale) pull-off of the solid hemisphere against the closed form.
 
-    python benchmarks/maugis_dugdale_fe.py LAMBDA [MESH] [RAMP] [INTERFACE]
+    python benchmarks/maugis_dugdale_fe.py LAMBDA [MESH] [RAMP] [INTERFACE] [--gamma-scale S]
 
 Traces the whole path (solver.arclength) for gamma / (C10 R) = 1.7e-4 and prints the
 pull-off in Maugis' units beside solver.maugis_dugdale's, the states, Newton iterations
 and the wall time.  MESH "coarse+zone" (or any mesh name + "+zone"): that mesh refined at
 the contact as `shell-adhesion case --adhesion dugdale` refines it
 (study.cohesive_case.fitted_spec: ZONE_ELEMENTS elements across Maugis' zone), its steps
-growing as that command's do there (REFINED_SETTINGS).
-INTERFACE frictionless (default) or no_slip (solver.contact.INTERFACES).
+growing as that command's do there (REFINED_SETTINGS); "coarse+zone8": 8 elements across
+it (`--zone-elements 8`).
+INTERFACE frictionless (default) or no_slip (solver.contact.INTERFACES).  --gamma-scale S:
+gamma / (C10 R) S times 1.7e-4, the approach and the mesh's even part scaled with Maugis'
+length (S^(1/3)): the same problem in Maugis' units with the finite body S^(1/3) as large.
 """
 import sys
 import time
@@ -19,19 +22,28 @@ from shell_adhesion.solver.cohesive import CohesiveLaw, Interface
 from shell_adhesion.solver.forms import discretise
 from shell_adhesion.solver.geometry import Cap
 from shell_adhesion.solver.mesh import cap_mesh
-from shell_adhesion.study.cohesive_case import (REFINED_SETTINGS, fitted_spec, zone_estimate,
-                                                zone_refinement)
+from shell_adhesion.study.cohesive_case import (REFINED_SETTINGS, ZONE_ELEMENTS, fitted_spec,
+                                                zone_estimate, zone_refinement)
 
 GAMMA_HAT, K_HAT, DELTA_MAX = 1.7e-4, 32 / 3, 2e-3
 
 if __name__ == "__main__":
+    scale = 1.0
+    if "--gamma-scale" in sys.argv:
+        k = sys.argv.index("--gamma-scale")
+        scale = float(sys.argv[k + 1])
+        del sys.argv[k:k + 2]
+    GAMMA_HAT, DELTA_MAX = GAMMA_HAT * scale, DELTA_MAX * scale ** (1 / 3)
+    even = None if scale == 1.0 else 0.15 * scale ** (1 / 3)
     lam = float(sys.argv[1])
     mesh = sys.argv[2] if len(sys.argv) > 2 else "coarse"
     ramp = float(sys.argv[3]) if len(sys.argv) > 3 else 0.5
     interface = sys.argv[4] if len(sys.argv) > 4 else "frictionless"
-    name, zone = mesh.removesuffix("+zone"), mesh.endswith("+zone")
-    refine = zone_refinement(zone_estimate(GAMMA_HAT, lam), name) if zone else 1.0
-    d = discretise(cap_mesh(Cap(1.0, 1.0), fitted_spec(name, dict(uniform=None, refine=refine))))
+    name, _, zone = mesh.partition("+zone")
+    elements = float(zone) if zone else ZONE_ELEMENTS
+    refine = (zone_refinement(zone_estimate(GAMMA_HAT, lam), name, elements)
+              if "+zone" in mesh else 1.0)
+    d = discretise(cap_mesh(Cap(1.0, 1.0), fitted_spec(name, dict(uniform=even, refine=refine))))
     law = CohesiveLaw(md.sigma0_of(lam, GAMMA_HAT, 1.0, K_HAT), GAMMA_HAT, ramp)
     t0 = time.perf_counter()
     # a refined mesh's steps grow as the cohesive case's do (study.cohesive_case)
@@ -48,7 +60,9 @@ if __name__ == "__main__":
     dt = time.perf_counter() - t0
     sc = md.scales(GAMMA_HAT, 1.0, K_HAT)
     ref = md.pull_off(lam)
-    print(f"lambda {lam}, mesh {mesh} ({d.ndof} dofs), ramp {ramp}, {interface}: "
+    print(f"lambda {lam}, gamma/(C10 R) {GAMMA_HAT:.3g}, mesh {mesh} ({d.ndof} dofs, x "
+          f"{refine:.3g} at the contact), "
+          f"ramp {ramp}, {interface}: "
           f"{path.ended_by}; "
           f"{len(path.states)} states, {path.timer.newton_iterations} Newton iterations, "
           f"{dt:.1f} s")

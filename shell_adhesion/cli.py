@@ -48,7 +48,8 @@ CASE_FLAGS = dict(R_mm="--R", t_mm="--t", h_mm="--h", C10_MPa="--C10",
                   C30_MPa="--C30", Jm="--Jm", D1_per_MPa="--D1", cavity="--cavity",
                   p_kPa="--p-kPa", p0_kPa="--p0-kPa", p_atm_kPa="--p-atm-kPa",
                   gas_exponent="--gas-exponent")
-COHESIVE_FLAGS = dict(CASE_FLAGS, sigma0_MPa="--sigma0", tabor="--tabor", adhesion="--adhesion")
+COHESIVE_FLAGS = dict(CASE_FLAGS, sigma0_MPa="--sigma0", tabor="--tabor", adhesion="--adhesion",
+                      zone_elements="--zone-elements")
 CAVITY_FLAGS = (("p_kPa", "kPa"), ("p0_kPa", "kPa"), ("p_atm_kPa", "kPa"), ("gas_exponent", "1"))
 MATERIAL_FLAGS = (("C01", "C01_MPa", "MPa"), ("C20", "C20_MPa", "MPa"), ("C30", "C30_MPa", "MPa"),
                   ("Jm", "Jm", "1"), ("D1", "D1_per_MPa", "1/MPa"))
@@ -122,10 +123,11 @@ def _shell(ns) -> tuple:
 def _run_case(ns):
     if ns.adhesion == "dugdale":
         return _run_cohesive_case(ns)
-    for flag in ("sigma0", "tabor"):
+    for flag, what in (("sigma0", "a cohesive strength"), ("tabor", "a cohesive strength"),
+                       ("zone_elements", "a cohesive zone")):
         if getattr(ns, flag) is not None:
-            raise InputError(f"--{flag}: {getattr(ns, flag)} given with --adhesion energy: "
-                             f"a cohesive strength needs --adhesion dugdale")
+            raise InputError(f"--{flag.replace('_', '-')}: {getattr(ns, flag)} given with "
+                             f"--adhesion energy: {what} needs --adhesion dugdale")
     ns.interface = ns.interface or "no_slip"
     solid = _solid(ns)
     inp = case_input(*_shell(ns), ns.interface, ns.mesh, names=CASE_FLAGS,
@@ -154,7 +156,9 @@ def _run_cohesive_case(ns):
         R, t, h, C10, gammas,
         None if ns.sigma0 is None else _number("--sigma0", ns.sigma0, "MPa"),
         None if ns.tabor is None else _number("--tabor", ns.tabor, "1"),
-        delta_max, ns.interface or "frictionless", ns.mesh, names=COHESIVE_FLAGS, **solid)
+        delta_max, ns.interface or "frictionless", ns.mesh, names=COHESIVE_FLAGS,
+        zone_elements=(cohesive_case.ZONE_ELEMENTS if ns.zone_elements is None
+                       else _number("--zone-elements", ns.zone_elements, "1")), **solid)
     result = cohesive_case.solve_checked(inp, error_bars=not ns.no_error_bars,
                                          progress=not ns.json)
     if ns.json:
@@ -511,6 +515,10 @@ def _parser():
     case.add_argument("--tabor", default=None,
                       help="with --adhesion dugdale: Tabor-Maugis parameter lambda instead "
                            "of --sigma0 (0.05 DMT-like to 3, near JKR)")
+    case.add_argument("--zone-elements", dest="zone_elements", default=None,
+                      help="with --adhesion dugdale: elements across the cohesive zone "
+                           "expected at the pull-off, 1 to 32 (default 4; the mesh is "
+                           "refined at the contact where it has fewer)")
     case.add_argument("--mesh", choices=MESHES, default="default", help="mesh density")
     case.add_argument("--cavity", default="open", metavar="MODE",
                       help="open (default), pressure (prescribed gauge --p-kPa) or sealed "

@@ -38,6 +38,12 @@ BAD = [
      "--material: yeoh with --adhesion dugdale"),
     (DUGDALE + ["--tabor", "1", "--cavity", "sealed"], "--cavity: sealed with --adhesion dugdale"),
     (DUGDALE + ["--tabor", "1", "--t", "30"], "--t"),      # the shell's own rules still apply
+    (DUGDALE + ["--tabor", "1", "--zone-elements", "0.5"],
+     "--zone-elements: 0.5 must be between 1 and 32 (elements across the cohesive zone)"),
+    (DUGDALE + ["--tabor", "1", "--zone-elements", "64"], "--zone-elements: 64 must be between"),
+    (DUGDALE + ["--tabor", "1", "--zone-elements", "nan"], "--zone-elements"),
+    (DUGDALE + ["--tabor", "1", "--zone-elements", "x"], "--zone-elements: 'x' must be a number"),
+    (["--zone-elements", "8"], "--zone-elements: 8 given with --adhesion energy"),
 ]
 
 
@@ -132,14 +138,20 @@ def test_the_mesh_is_fitted_to_the_zone_before_the_solve(monkeypatch):
         seen.append(iface.d.capmesh)
         return real(iface, *a, **{**k, "settings": arclength.ArcSettings(max_steps=25)})
     monkeypatch.setattr(cc, "trace", short)
-    r = cc.solve_cohesive_case(20, 3, 20, 0.3, 30, tabor=3.0, mesh="coarse")
     zone_mm = cc.zone_estimate(0.005, 3.0) * 20
-    h_mm = r.provenance["apex_element_mm"]
-    assert abs(zone_mm / h_mm - cc.ZONE_ELEMENTS) < 1e-9
-    assert any(f"refined at the contact to {h_mm:.3g} mm" in n for n in r.notes), r.notes
+    for elements in (cc.ZONE_ELEMENTS, 8.0):        # the default, and one asked for
+        r = cc.solve_cohesive_case(20, 3, 20, 0.3, 30, tabor=3.0, mesh="coarse",
+                                   zone_elements=elements)
+        h_mm = r.provenance["apex_element_mm"]
+        assert abs(zone_mm / h_mm - elements) < 1e-9
+        assert r.provenance["zone_elements"] == elements
+        assert r.to_dict()["input"]["zone_elements"] == elements
+        factor = r.provenance["zone_refinement"]
+        assert any(f"refined at the contact to {h_mm:.3g} mm (x {factor:.2g}): {elements:g} "
+                   f"elements across" in n for n in r.notes), r.notes
     # the apex element of the mesh actually solved (mesh.graded rescales the sizes to fit
     # the meridian: a few per cent)
-    nodes = seen[0].nodes[:, seen[0].outer]
+    nodes = seen[-1].nodes[:, seen[-1].outer]
     assert abs(np.hypot(*(nodes[:, 2] - nodes[:, 0])) * 20 - h_mm) < 0.05 * h_mm
     assert r.refused and r.coarser is None      # no second mesh for a refused path
 

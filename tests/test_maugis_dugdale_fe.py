@@ -97,15 +97,21 @@ def test_dmt_limit():
 STATED_3 = {"P_star": +0.0153}
 
 
-@pytest.mark.long
-def test_lambda_3_on_a_mesh_fitted_to_its_zone_follows_maugis_dugdale():
+def zone_fitted_path(lam, elements):
+    """The path on the coarse mesh refined at the contact to put `elements` elements across
+    Maugis' zone, stepping as the case command does there: (path, refinement factor)."""
     from shell_adhesion.study.cohesive_case import (REFINED_SETTINGS, fitted_spec,
                                                     zone_estimate, zone_refinement)
-    refine = zone_refinement(zone_estimate(GAMMA_HAT, 3.0), "coarse")
+    refine = zone_refinement(zone_estimate(GAMMA_HAT, lam), "coarse", elements)
     d = discretise(cap_mesh(Cap(1.0, 1.0), fitted_spec("coarse", dict(uniform=None,
                                                                       refine=refine))))
-    law = CohesiveLaw(md.sigma0_of(3.0, GAMMA_HAT, 1.0, K_HAT), GAMMA_HAT)
-    path = trace(Interface(d, law), DELTA_MAX, settings=REFINED_SETTINGS)
+    law = CohesiveLaw(md.sigma0_of(lam, GAMMA_HAT, 1.0, K_HAT), GAMMA_HAT)
+    return trace(Interface(d, law), DELTA_MAX, settings=REFINED_SETTINGS), refine
+
+
+@pytest.mark.long
+def test_lambda_3_on_a_mesh_fitted_to_its_zone_follows_maugis_dugdale():
+    path, _ = zone_fitted_path(3.0, 4.0)
     assert path.ended_by == "left the cohesive range"
     sc, ref, po = md.scales(GAMMA_HAT, 1.0, K_HAT), md.pull_off(3.0), pull_off(path)
     dev = {"P_star": po.P_star / sc["force"] / ref.P - 1}
@@ -114,3 +120,27 @@ def test_lambda_3_on_a_mesh_fitted_to_its_zone_follows_maugis_dugdale():
           f"{po.delta_star / sc['approach']:.3f} ({ref.D:.3f}), {len(path.states)} states")
     assert abs(dev["P_star"]) <= 0.02                               # the issue's criterion
     deviations_within("Maugis-Dugdale lambda 3", dev, STATED_3)
+
+
+# lambda 1 with eight elements across Maugis' zone (`--zone-elements 8`; `python
+# benchmarks/maugis_dugdale_fe.py 1 coarse+zone8`: the coarse mesh x 0.245 at the
+# contact, 15,559 dofs, 154 states): Pbar* +0.27 %, A* 0.904 against 0.904 (with four
+# elements, x 0.491: +0.57 %, A* +2.7 %; the plain coarse mesh, two: +0.98 %, A* -5.8 %).
+# Held: P* at twice its deviation, A* within 1 %.  delta* is printed, not held (-6 %: the
+# hemisphere's finite-body compliance, see the module's docstring)
+STATED_1_ZONE8 = {"P_star": +0.0027}
+
+
+@pytest.mark.slow
+def test_eight_elements_across_the_zone_give_maugis_dugdale_a_star():
+    path, refine = zone_fitted_path(1.0, 8.0)
+    assert abs(refine - 0.245) <= 0.001
+    assert path.ended_by == "left the cohesive range"
+    sc, ref, po = md.scales(GAMMA_HAT, 1.0, K_HAT), md.pull_off(1.0), pull_off(path)
+    dev = {"P_star": po.P_star / sc["force"] / ref.P - 1}
+    A = po.a_star / sc["length"]
+    print(f"lambda 1, 8 elements across the zone: P* {100 * dev['P_star']:+.2f} %, A* "
+          f"{A:.3f} ({ref.A:.3f}), Dbar* {po.delta_star / sc['approach']:.3f} ({ref.D:.3f}), "
+          f"{len(path.states)} states")
+    deviations_within("Maugis-Dugdale lambda 1, 8 elements", dev, STATED_1_ZONE8)
+    assert abs(A / ref.A - 1) <= 0.01

@@ -56,7 +56,10 @@ ZONE_ELEMENTS = 4.0
 # 3000 states).  Where the named mesh is kept, 4 (lambda 0.3: growing after 6 sampled P
 # coarsely near P*, its error bar 0.0016 -> 0.03 N)
 REFINED_SETTINGS = ArcSettings(easy=6)
-COHESIVE_NAMES = dict(sigma0_MPa="sigma0_MPa", tabor="tabor", adhesion="adhesion")
+COHESIVE_NAMES = dict(sigma0_MPa="sigma0_MPa", tabor="tabor", adhesion="adhesion",
+                      zone_elements="zone_elements")
+ZONE_ELEMENTS_RANGE = (1.0, 32.0)   # fewer than one is no resolution; beyond 32 the states
+#                                     and dofs grow for no measurable change
 # the pull-off values: name, dimensionless field of CohesivePullOff, unit
 PULL_OFF_FIELDS = (("P_star_N", "P_star", "N"), ("delta_star_mm", "delta_star", "mm"),
                    ("a_star_mm", "a_star", "mm"), ("c_star_mm", "c_star", "mm"),
@@ -67,11 +70,13 @@ PULL_OFF_FIELDS = (("P_star_N", "P_star", "N"), ("delta_star_mm", "delta_star", 
 @dataclass(frozen=True)
 class CohesiveInput:
     """Checked input of a cohesive case: the shell (`case`, one gamma) and the law's
-    sigma0 [MPa] and lambda (both filled, from whichever was given)."""
+    sigma0 [MPa] and lambda (both filled, from whichever was given), and the elements the
+    mesh puts across the cohesive zone expected at the pull-off."""
 
     case: CaseInput
     sigma0_MPa: float
     tabor: float
+    zone_elements: float = ZONE_ELEMENTS
 
     @property
     def gamma_hat(self) -> float:
@@ -85,16 +90,17 @@ class CohesiveInput:
 
     def as_dict(self) -> dict:
         return dict(self.case.as_dict(), adhesion="dugdale", sigma0_MPa=self.sigma0_MPa,
-                    tabor=self.tabor)
+                    tabor=self.tabor, zone_elements=self.zone_elements)
 
 
 def cohesive_input(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2, sigma0_MPa=None, tabor=None,
                    delta_max_mm=None, interface="frictionless", mesh="default",
-                   names=None, **solid) -> CohesiveInput:
+                   names=None, zone_elements=ZONE_ELEMENTS, **solid) -> CohesiveInput:
     """Check a cohesive case's input before any computation; InputError names the field
     as `names` calls it (API_NAMES and COHESIVE_NAMES by default).  `solid` holds the
     material and cavity arguments of `case_input`: only the open neo-Hookean shell is
-    supported.  `interface` frictionless or no_slip, as the energy method's."""
+    supported.  `interface` frictionless or no_slip, as the energy method's;
+    `zone_elements` the elements across the cohesive zone (ZONE_ELEMENTS_RANGE)."""
     n = {**API_NAMES, **COHESIVE_NAMES, **(names or {})}
     inp = case_input(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2, delta_max_mm, interface, mesh,
                      n, **solid)
@@ -130,7 +136,12 @@ def cohesive_input(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2, sigma0_MPa=None, tabor
                          f"lambda <= {TABOR_RANGE[1]:g} (with gamma = "
                          f"{inp.gamma_J_m2[0]:g} J/m^2, C10 = {inp.C10_MPa:g} MPa, R = "
                          f"{inp.R_mm:g} mm)")
-    return CohesiveInput(inp, float(sigma0), float(lam))
+    ze = check_finite(zone_elements, n["zone_elements"], "1")
+    lo, hi = ZONE_ELEMENTS_RANGE
+    if not lo <= ze <= hi:
+        raise InputError(f"{n['zone_elements']}: {ze:g} must be between {lo:g} and {hi:g} "
+                         f"(elements across the cohesive zone)")
+    return CohesiveInput(inp, float(sigma0), float(lam), float(ze))
 
 
 @dataclass(frozen=True, eq=False)
@@ -218,20 +229,23 @@ def _clean(v):
 
 def solve_cohesive_case(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2, *, sigma0_MPa=None, tabor=None,
                         delta_max_mm=None, interface="frictionless", mesh="default",
-                        error_bars=True, progress=False) -> CohesiveCaseResult:
+                        zone_elements=ZONE_ELEMENTS, error_bars=True,
+                        progress=False) -> CohesiveCaseResult:
     """The Maugis-Dugdale pull-off of one open neo-Hookean shell on a rigid plane.
 
     Give the interface's strength as `sigma0_MPa` (> 0) or as the Tabor-Maugis parameter
     `tabor` (one of them); `interface` frictionless or no_slip (a node that touches keeps
     its radius).  Without delta_max_mm the approach turns at TURN times the
     energy method's estimate of the pull-off radius (solver.request), within the domain's
-    depth bound.  `error_bars`: the same path on the next coarser mesh (not when the
+    depth bound.  `zone_elements`: the mesh is refined at the contact to put this many
+    elements across the cohesive zone Maugis expects (1 to 32; where the named mesh has
+    more it is kept).  `error_bars`: the same path on the next coarser mesh (not when the
     requested mesh's path is refused).  `progress`: a
     line per 50 states on stderr.  The input is checked before any computation
     (InputError names the field).
     """
     inp = cohesive_input(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2, sigma0_MPa, tabor,
-                         delta_max_mm, interface, mesh)
+                         delta_max_mm, interface, mesh, zone_elements=zone_elements)
     return solve_checked(inp, error_bars, progress)
 
 
@@ -248,13 +262,13 @@ def solve_checked(inp: CohesiveInput, error_bars=True, progress=False,
                delta_max=(min(delta_bound(cap), APPROACH_MAX) if c.delta_max_mm is None
                           else c.delta_max_mm / c.R_mm),
                a_turn=None if c.delta_max_mm is not None else TURN * a_need,
-               refine=zone_refinement(zone, c.mesh))
+               refine=zone_refinement(zone, c.mesh, inp.zone_elements))
     units = (c.R_mm, c.C10_MPa) if progress else None
     notes = []
     if fit["refine"] < 1.0:
         h = fitted_spec(c.mesh, fit).h_apex
         notes.append(f"the {c.mesh} mesh is refined at the contact to {h * c.R_mm:.3g} mm "
-                     f"(x {fit['refine']:.2g}): {ZONE_ELEMENTS:g} elements across the cohesive "
+                     f"(x {fit['refine']:.2g}): {inp.zone_elements:g} elements across the cohesive "
                      f"zone expected at the pull-off (a sphere's, Maugis: {zone * c.R_mm:.3g} mm)")
         if progress:
             print(f"  note: {notes[-1]}", file=sys.stderr, flush=True)
@@ -272,7 +286,8 @@ def solve_checked(inp: CohesiveInput, error_bars=True, progress=False,
     prov = dict(version=__version__, mesh=c.mesh, dofs=solve.ndof,
                 states=len(solve.path.states),
                 newton_iterations=int(solve.path.timer.newton_iterations), wall_s=solve.wall_s,
-                even_arc=fit["uniform"], zone_refinement=fit["refine"],
+                even_arc=fit["uniform"], zone_elements=inp.zone_elements,
+                zone_refinement=fit["refine"],
                 apex_element_mm=fitted_spec(c.mesh, fit).h_apex * c.R_mm,
                 delta_max_mm=fit["delta_max"] * c.R_mm,
                 a_turn_mm=None if fit["a_turn"] is None else fit["a_turn"] * c.R_mm)
@@ -318,10 +333,10 @@ def _solve(cap, law, interface, mesh, fit, units=None, deadline=None) -> Cohesiv
                          wall, q)
 
 
-def zone_refinement(zone: float, mesh: str) -> float:
-    """The factor (<= 1) on `mesh`'s element sizes at the contact that puts ZONE_ELEMENTS
+def zone_refinement(zone: float, mesh: str, elements: float = ZONE_ELEMENTS) -> float:
+    """The factor (<= 1) on `mesh`'s element sizes at the contact that puts `elements`
     apex elements across a cohesive zone of `zone` / R."""
-    return min(1.0, zone / (ZONE_ELEMENTS * mesh_spec(mesh).h_apex))
+    return min(1.0, zone / (elements * mesh_spec(mesh).h_apex))
 
 
 def fitted_spec(mesh: str, fit: dict):

@@ -5,7 +5,8 @@ named), default mesh.
 Each stated P* is held within its stated error bar (with a floor of one unit of its last
 printed digit); the energy method's P* beside it likewise.  The base shell's three lambdas
 are `slow` (about 2 minutes); the thickness minimum and lambda = 3 are `long` (about 10
-minutes each), lambda 0.05's minimum too (about a minute).
+minutes each; with eight elements across the zone, frictionless and no_slip, about 20),
+lambda 0.05's minimum too (about a minute).
 """
 import pytest
 
@@ -91,9 +92,10 @@ def test_lambda_3_on_a_mesh_fitted_to_its_zone():
 
 @pytest.mark.long
 def test_lambda_3_with_eight_elements_across_the_zone():
-    # docs ("Which contact area ..."): -2.0666 N in 542 states (1630 with four), 2.3 %
-    # beyond the energy method's covered-area P* (-2.0209 N); no error bar (the coarse
-    # companion, four across, stalls on a snap).  Held to the 0.05 % the docs print
+    # docs ("Which contact area ...", "no_slip contact"): -2.0666 N in 542 states (1630
+    # with four), 2.3 % beyond the energy method's covered-area P* (-2.0209 N); no error
+    # bar (the coarse companion, four across, stalls on a snap).  Held to the 0.05 % the
+    # docs print
     r = solve_cohesive_case(**_shell(0.15), tabor=3.0, zone_elements=8, error_bars=False)
     assert not r.refused, r.refused
     assert abs(r.provenance["zone_refinement"] - 0.266) <= 0.001
@@ -101,6 +103,13 @@ def test_lambda_3_with_eight_elements_across_the_zone():
     _within("lambda 3, eight elements", P, (-2.0666, 0.001))
     assert abs(P / COVERED_AREA - 1.023) <= 0.0005
     assert len(r.solve.path.states) <= 1630 // 2
+    # no_slip, refused with four elements (no turn in 3000 states): -2.0684 N in 520
+    ns = solve_cohesive_case(**_shell(0.15), tabor=3.0, zone_elements=8, interface="no_slip",
+                             error_bars=False)
+    assert not ns.refused, ns.refused
+    P_ns = ns.to_dict()["pull_off"]["P_star_N"]
+    _within("lambda 3, eight elements, no_slip", P_ns, (-2.0684, 0.001))
+    assert abs(P_ns / P - 1) <= 0.002
 
 
 @pytest.mark.long

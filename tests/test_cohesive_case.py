@@ -140,20 +140,57 @@ def test_the_mesh_is_fitted_to_the_zone_before_the_solve(monkeypatch):
     monkeypatch.setattr(cc, "trace", short)
     zone_mm = cc.zone_estimate(0.005, 3.0) * 20
     for elements in (cc.ZONE_ELEMENTS, 8.0):        # the default, and one asked for
+        seen.clear()
         r = cc.solve_cohesive_case(20, 3, 20, 0.3, 30, tabor=3.0, mesh="coarse",
                                    zone_elements=elements)
+        # the 25-state path is refused: traced once more with twice the elements, then
+        # refused; no coarser mesh for a refused path
+        assert r.refused and r.coarser is None and len(seen) == 2
+        first = r.provenance["first_path"]
+        assert first["zone_elements"] == elements and first["states"] == 25
+        assert r.provenance["zone_elements"] == cc.RETRY_FACTOR * elements
+        assert r.to_dict()["input"]["zone_elements"] == elements     # as asked
         h_mm = r.provenance["apex_element_mm"]
-        assert abs(zone_mm / h_mm - elements) < 1e-9
-        assert r.provenance["zone_elements"] == elements
-        assert r.to_dict()["input"]["zone_elements"] == elements
+        assert abs(zone_mm / h_mm - cc.RETRY_FACTOR * elements) < 1e-9
         factor = r.provenance["zone_refinement"]
-        assert any(f"refined at the contact to {h_mm:.3g} mm (x {factor:.2g}): {elements:g} "
-                   f"elements across" in n for n in r.notes), r.notes
-    # the apex element of the mesh actually solved (mesh.graded rescales the sizes to fit
-    # the meridian: a few per cent)
-    nodes = seen[-1].nodes[:, seen[-1].outer]
-    assert abs(np.hypot(*(nodes[:, 2] - nodes[:, 0])) * 20 - h_mm) < 0.05 * h_mm
-    assert r.refused and r.coarser is None      # no second mesh for a refused path
+        assert any(f"traced again with {cc.RETRY_FACTOR * elements:g} (the coarse mesh x "
+                   f"{factor:.2g} at the contact)" in n for n in r.notes), r.notes
+        assert any(f": {elements:g} elements across" in n for n in r.notes), r.notes
+        # the apex elements of the meshes actually solved (mesh.graded rescales the sizes
+        # to fit the meridian: a few per cent)
+        for mesh, n in zip(seen, (elements, cc.RETRY_FACTOR * elements)):
+            nodes = mesh.nodes[:, mesh.outer]
+            h = np.hypot(*(nodes[:, 2] - nodes[:, 0])) * 20
+            assert abs(h - zone_mm / n) < 0.05 * zone_mm / n
+
+
+def test_a_path_that_snaps_without_turning_is_answered_with_twice_the_elements(monkeypatch):
+    """The first path is cut to 25 states (as the base shell's at lambda 3 with no_slip
+    and four elements runs out of its 3000 states snapping from node to node); the retry
+    with eight runs in full and answers, without error bars (the coarser mesh would have
+    the failed path's four) and with the first path named in the notes and provenance."""
+    real = arclength.trace
+    calls = []
+
+    def first_short(iface, *a, **k):
+        calls.append(iface.d.ndof)
+        if len(calls) == 1:
+            k = {**k, "settings": arclength.ArcSettings(max_steps=25)}
+        return real(iface, *a, **k)
+    monkeypatch.setattr(cc, "trace", first_short)
+    r = cc.solve_cohesive_case(20, 3, 20, 0.3, 30, tabor=1.0, mesh="coarse",
+                               interface="no_slip")
+    assert not r.refused and r.coarser is None and len(calls) == 2
+    assert calls[1] > calls[0]                      # the retried mesh is finer
+    assert r.provenance["first_path"]["refused"].startswith("did not turn round")
+    assert r.provenance["zone_elements"] == cc.RETRY_FACTOR * cc.ZONE_ELEMENTS
+    assert any("no error bars: the next coarser mesh would have 4 elements" in n
+               for n in r.notes), r.notes
+    po = r.to_dict()["pull_off"]
+    assert po["P_star_N_error"] is None
+    # the pull-off of the retried path: the base shell's at lambda 1 (default mesh, four
+    # across: -2.1747 +- 0.0083 N, docs/adhesion-range.md)
+    assert po["P_star_N"] == pytest.approx(-2.1747, abs=3 * 0.0083)
 
 
 def test_the_fitted_family_keeps_its_ratio():

@@ -5,8 +5,9 @@ named), default mesh.
 Each stated P* is held within its stated error bar (with a floor of one unit of its last
 printed digit); the energy method's P* beside it likewise.  The base shell's three lambdas
 are `slow` (about 2 minutes); the thickness minimum and lambda = 3 are `long` (about 10
-minutes each; with eight elements across the zone, frictionless and no_slip, about 20),
-lambda 0.05's minimum too (about a minute).
+minutes each; with eight elements across the zone, frictionless and no_slip, about 20;
+no_slip with the default four, retried with eight, about 11), lambda 0.05's minimum too
+(about a minute).
 """
 import pytest
 
@@ -103,13 +104,27 @@ def test_lambda_3_with_eight_elements_across_the_zone():
     _within("lambda 3, eight elements", P, (-2.0666, 0.001))
     assert abs(P / COVERED_AREA - 1.023) <= 0.0005
     assert len(r.solve.path.states) <= 1630 // 2
-    # no_slip, refused with four elements (no turn in 3000 states): -2.0684 N in 520
+    # no_slip (with four elements: no turn in 3000 states, then retried): -2.0684 N in 520
     ns = solve_cohesive_case(**_shell(0.15), tabor=3.0, zone_elements=8, interface="no_slip",
                              error_bars=False)
     assert not ns.refused, ns.refused
     P_ns = ns.to_dict()["pull_off"]["P_star_N"]
     _within("lambda 3, eight elements, no_slip", P_ns, (-2.0684, 0.001))
     assert abs(P_ns / P - 1) <= 0.002
+
+
+@pytest.mark.long
+def test_lambda_3_no_slip_with_the_default_elements_is_answered_by_the_retry():
+    # docs ("no_slip contact"): with four elements across the zone the path does not turn
+    # in 3000 states; traced again with eight it gives the eight-element P* (-2.0684 N),
+    # without error bars (the coarser mesh would have four)
+    r = solve_cohesive_case(**_shell(0.15), tabor=3.0, interface="no_slip")
+    assert not r.refused, r.refused
+    first = r.provenance["first_path"]
+    assert first["zone_elements"] == 4 and first["refused"].startswith("did not turn round")
+    assert r.provenance["zone_elements"] == 8 and r.coarser is None
+    _within("lambda 3, no_slip, retried", r.to_dict()["pull_off"]["P_star_N"],
+            (-2.0684, 0.001))
 
 
 @pytest.mark.long

@@ -115,6 +115,12 @@ BAD = [
     ({"cavity": {"mode": "pressure", "p_kPa": 1}}, "adhesion.model: dugdale with cavity.mode "
                                                    "pressure"),
     ({"adhesion": {"model": "dugdale", "tabor": "x"}}, "adhesion.tabor: 'x' must be a number"),
+    ({"adhesion": {"model": "dugdale", "tabor": 1, "zone_elements": 64}},
+     "adhesion.zone_elements: 64 must be between 1 and 32 (elements across the cohesive zone)"),
+    ({"adhesion": {"model": "dugdale", "tabor": 1, "zone_elements": "x"}},
+     "adhesion.zone_elements: 'x' must be a number"),
+    ({"adhesion": {"model": "energy", "zone_elements": 8}},
+     "adhesion.zone_elements: given with adhesion.model energy"),
 ]
 
 
@@ -136,6 +142,17 @@ def test_a_bad_file_is_refused_by_name(change, message):
     with pytest.raises(StudyError) as e:
         validate(_doc(change))
     assert message in str(e.value)
+
+
+def test_the_elements_across_the_zone_reach_every_point_and_its_key():
+    from shell_adhesion.study.cohesive_study import point_key, points
+    default = points(validate(_doc({})))
+    eight = points(validate(_doc({"adhesion": {"model": "dugdale", "tabor": 1,
+                                               "zone_elements": 8}})))
+    assert {p.input.zone_elements for p in default} == {4.0}
+    assert {p.input.zone_elements for p in eight} == {8.0}
+    # the two answers are different problems: the catalogue keeps them apart
+    assert point_key(default[0].input, False) != point_key(eight[0].input, False)
 
 
 def test_the_command_refuses_a_bad_file_in_one_line_with_exit_2(tmp_path, capsys):

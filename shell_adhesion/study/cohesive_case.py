@@ -11,8 +11,10 @@ contact radius a (gap 0) and the cohesive-zone radius c (gap delta_c).  The stre
 given as sigma0 [MPa] or as the Tabor-Maugis parameter lambda = 2 sigma0 (R / (pi gamma
 K^2))^(1/3), K = 4 E* / 3, E* = 8 C10 (the solid sphere's; for a shell it is a measure of
 the range against R).  The named mesh is refined at the contact where its apex elements
-are too large for the cohesive zone Maugis expects (`zone_refinement`, `fitted_spec`).
-Error bars from the next coarser mesh (`solver.error_bars`), refined by the same factor.
+are too large for the cohesive zone Maugis expects (`zone_refinement`, `fitted_spec`);
+a path that snaps from node to node without turning is traced again with twice the
+elements.  Error bars from the next coarser mesh (`solver.error_bars`), refined by the
+same factor.
 
 Units: R, t, h, delta, a, c in mm; C10 and sigma0 in MPa; gamma in J/m^2; P in N (> 0
 compression; pull-off P < 0); delta > 0 approach.
@@ -54,6 +56,11 @@ ZONE_EDGES_MIN = 2.0          # fewer outer edges across the cohesive zone: a wa
 # base shell, lambda 3: 1630 -> 542 states), but the coarse companion then has four, and
 # at lambda 3 it stalls on a snap (no error bars): `zone_elements` asks for them
 ZONE_ELEMENTS = 4.0
+# a path that does not turn round or does not leave the cohesive range (the contact edge
+# snapping from node to node until the state bound) is traced once more with this many
+# times the elements across the zone (base shell, lambda 3, no_slip: four, no turn in
+# 3000 states; eight, answered in 520); once: each retry doubles the dofs at the contact
+RETRY_FACTOR = 2.0
 # on a mesh so refined the states are spent crossing the zone's elements, at 5-6 Newton
 # iterations each: the step grows after up to 6 (base shell, lambda 3: with 4, no turn in
 # 3000 states).  Where the named mesh is kept, 4 (lambda 0.3: growing after 6 sampled P
@@ -161,6 +168,13 @@ class CohesiveSolve:
     wall_s: float = math.nan
     quality: Quality = None           # the worst element quality over the retraction
 
+    @property
+    def path_failed(self) -> bool:
+        """Refused because the path did not turn round or did not leave the cohesive
+        range (not for its pull-off or its elements)."""
+        return bool(self.refused) and (self.path.turn < 0
+                                       or self.path.ended_by != "left the cohesive range")
+
 
 @dataclass(frozen=True, eq=False)
 class CohesiveCaseResult:
@@ -243,8 +257,10 @@ def solve_cohesive_case(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2, *, sigma0_MPa=Non
     energy method's estimate of the pull-off radius (solver.request), within the domain's
     depth bound.  `zone_elements`: the mesh is refined at the contact to put this many
     elements across the cohesive zone Maugis expects (1 to 32; where the named mesh has
-    more it is kept).  `error_bars`: the same path on the next coarser mesh (not when the
-    requested mesh's path is refused).  `progress`: a
+    more it is kept); a path that does not turn round or does not leave the cohesive
+    range is traced once more with RETRY_FACTOR times as many (the notes and
+    provenance["first_path"] say so).  `error_bars`: the same path on the next coarser
+    mesh (not when the requested mesh's path is refused or was retried).  `progress`: a
     line per 50 states on stderr.  The input is checked before any computation
     (InputError names the field).
     """
@@ -269,33 +285,55 @@ def solve_checked(inp: CohesiveInput, error_bars=True, progress=False,
                refine=zone_refinement(zone, c.mesh, inp.zone_elements))
     units = (c.R_mm, c.C10_MPa) if progress else None
     notes = []
+
+    def note(text):         # kept for the answer, and shown at once with progress
+        notes.append(text)
+        if progress:
+            print(f"  note: {text}", file=sys.stderr, flush=True)
+
     if fit["refine"] < 1.0:
         h = fitted_spec(c.mesh, fit).h_apex
-        notes.append(f"the {c.mesh} mesh is refined at the contact to {h * c.R_mm:.3g} mm "
-                     f"(x {fit['refine']:.2g}): {inp.zone_elements:g} elements across the "
-                     f"cohesive zone expected at the pull-off (a sphere's, Maugis: "
-                     f"{zone * c.R_mm:.3g} mm)")
-        if progress:
-            print(f"  note: {notes[-1]}", file=sys.stderr, flush=True)
+        note(f"the {c.mesh} mesh is refined at the contact to {h * c.R_mm:.3g} mm (x "
+             f"{fit['refine']:.2g}): {inp.zone_elements:g} elements across the cohesive zone "
+             f"expected at the pull-off (a sphere's, Maugis: {zone * c.R_mm:.3g} mm)")
     deadline = None if timeout_s is None else time.monotonic() + timeout_s
     solve = _solve(cap, inp.law, c.interface, c.mesh, fit, units, deadline)
+    elements, first = inp.zone_elements, None
+    retry = dict(fit, refine=zone_refinement(zone, c.mesh, RETRY_FACTOR * elements))
+    if (solve.path_failed and RETRY_FACTOR * elements <= ZONE_ELEMENTS_RANGE[1]
+            and retry["refine"] < fit["refine"]):
+        first, fit, elements = solve, retry, RETRY_FACTOR * elements
+        note(f"with {inp.zone_elements:g} elements across the cohesive zone the path "
+             f"{first.refused} after {len(first.path.states)} states ({first.wall_s:.0f} s): "
+             f"traced again with {elements:g} (the {c.mesh} mesh x {fit['refine']:.2g} at "
+             f"the contact)")
+        solve = _solve(cap, inp.law, c.interface, c.mesh, fit, units, deadline)
+    # the next coarser mesh with the retried factor has the failed path's elements at
+    # the contact: its path is not run
     coarser = (_solve(cap, inp.law, c.interface, coarser_mesh(c.mesh), fit, units, deadline)
-               if error_bars and not solve.refused else None)
+               if error_bars and not solve.refused and first is None else None)
     if not solve.refused and solve.zone_edges < ZONE_EDGES_MIN:
         notes.append(f"the cohesive zone at the pull-off spans {solve.zone_edges:.2g} outer "
                      f"edges (< {ZONE_EDGES_MIN:g}): not resolved by the {c.mesh} mesh; "
                      f"trust P* within its error bar, a* and c* less")
+    if first is not None and error_bars and not solve.refused:
+        notes.append(f"no error bars: the next coarser mesh would have "
+                     f"{elements / 2:g} elements across the zone, as the path that failed")
     if coarser is not None and coarser.refused and not solve.refused:
         notes.append(f"no error bars: the {coarser.mesh} mesh's path {coarser.refused}")
         coarser = None
     prov = dict(version=__version__, mesh=c.mesh, dofs=solve.ndof,
                 states=len(solve.path.states),
                 newton_iterations=int(solve.path.timer.newton_iterations), wall_s=solve.wall_s,
-                even_arc=fit["uniform"], zone_elements=inp.zone_elements,
+                even_arc=fit["uniform"], zone_elements=elements,
                 zone_refinement=fit["refine"],
                 apex_element_mm=fitted_spec(c.mesh, fit).h_apex * c.R_mm,
                 delta_max_mm=fit["delta_max"] * c.R_mm,
                 a_turn_mm=None if fit["a_turn"] is None else fit["a_turn"] * c.R_mm)
+    if first is not None:
+        prov["first_path"] = dict(zone_elements=inp.zone_elements, dofs=first.ndof,
+                                  states=len(first.path.states), wall_s=first.wall_s,
+                                  refused=first.refused)
     if coarser is not None:
         prov.update(coarser_mesh=coarser.mesh, coarser_wall_s=coarser.wall_s)
     return CohesiveCaseResult(inp, solve, coarser, tuple(notes), prov)

@@ -29,7 +29,9 @@
                                 #   (n of p V^n = const, >= 1, default 1 isothermal)
     adhesion:                   # finite-range adhesion (default: the energy method)
       model: dugdale            #   energy or dugdale (study.cohesive_study: one traced path
-      tabor: 1                  #   per point); tabor the base lambda, may be swept
+      tabor: 1                  #   per point); tabor the base lambda, may be swept;
+                                #   zone_elements: elements across the cohesive zone
+                                #   (1 to 32, default 4)
     error_bars: true            # a second, coarser mesh for error bars (default true)
     task_timeout_s: 3600        # wall-time limit of one FE task, s (default 3600): a task
                                 #   past it is recorded as failed with its reason
@@ -491,8 +493,9 @@ def _adhesion(doc, sweeps, grid, material, cavity) -> dict:
     if model not in ADHESION_MODELS:
         raise StudyError(f"adhesion.model: {model!r} must be one of {', '.join(ADHESION_MODELS)}")
     if model == "energy":
-        if "tabor" in doc or swept:
-            where = "adhesion.tabor" if "tabor" in doc else swept[0]
+        if "tabor" in doc or "zone_elements" in doc or swept:
+            where = next((f"adhesion.{k}" for k in ("tabor", "zone_elements") if k in doc),
+                         swept[0] if swept else None)
             raise StudyError(f"{where}: given with adhesion.model energy (the energy method has "
                              "zero range; use dugdale)")
         return {}
@@ -510,7 +513,10 @@ def _adhesion(doc, sweeps, grid, material, cavity) -> dict:
     if cavity and cavity.get("mode") != "open":
         raise StudyError(f"adhesion.model: dugdale with cavity.mode {cavity['mode']}: the "
                          "cohesive interface is for the open shell only")
-    return {"model": "dugdale", "tabor": _number(doc["tabor"], "adhesion.tabor")}
+    out = {"model": "dugdale", "tabor": _number(doc["tabor"], "adhesion.tabor")}
+    if "zone_elements" in doc:      # its range: study.cohesive_case's rule, per point
+        out["zone_elements"] = _number(doc["zone_elements"], "adhesion.zone_elements")
+    return out
 
 
 def cavity_at(study: Study, point: dict):
@@ -542,11 +548,13 @@ def cohesive_input_at(study: Study, point: dict):
     lam, lam_place = point["tabor"]
     names = dict(R_mm="R_mm", t_mm=t_place, h_mm=h_place, C10_MPa=c_place,
                  gamma_J_m2=g_place, tabor=lam_place, delta_max_mm="delta_max_over_R",
-                 interface="interface", mesh="mesh", adhesion="adhesion.model")
+                 interface="interface", mesh="mesh", adhesion="adhesion.model",
+                 zone_elements="adhesion.zone_elements")
     delta_max = None if study.delta_max_over_R is None else study.delta_max_over_R * R
+    zone = {k: v for k, v in study.adhesion.items() if k == "zone_elements"}
     try:
         return cohesive_input(R, t * R, h * R, C10, [gamma], tabor=lam, delta_max_mm=delta_max,
-                              interface=study.interface, mesh=study.mesh, names=names)
+                              interface=study.interface, mesh=study.mesh, names=names, **zone)
     except InputError as e:         # the rule, named by the file's place
         raise StudyError(str(e)) from None
 

@@ -518,7 +518,8 @@ def _parser():
     case.add_argument("--zone-elements", dest="zone_elements", default=None,
                       help="with --adhesion dugdale: elements across the cohesive zone "
                            "expected at the pull-off, 1 to 32 (default 4; the mesh is "
-                           "refined at the contact where it has fewer)")
+                           "refined at the contact where it has fewer; a path that does "
+                           "not turn round is traced again with twice as many)")
     case.add_argument("--mesh", choices=MESHES, default="default", help="mesh density")
     case.add_argument("--cavity", default="open", metavar="MODE",
                       help="open (default), pressure (prescribed gauge --p-kPa) or sealed "

@@ -188,9 +188,10 @@ def test_a_path_that_snaps_without_turning_is_answered_with_twice_the_elements(m
                for n in r.notes), r.notes
     po = r.to_dict()["pull_off"]
     assert po["P_star_N_error"] is None
-    # the pull-off of the retried path: the base shell's at lambda 1 (default mesh, four
-    # across: -2.1747 +- 0.0083 N, docs/adhesion-range.md)
-    assert po["P_star_N"] == pytest.approx(-2.1747, abs=3 * 0.0083)
+    # the pull-off of the retried path: the base shell's at lambda 1 within its error bar
+    # (default mesh, four across: -2.1747 +- 0.0083 N, docs/adhesion-range.md; measured
+    # -2.1768 N)
+    assert po["P_star_N"] == pytest.approx(-2.1747, abs=0.0083)
 
 
 def test_the_fitted_family_keeps_its_ratio():

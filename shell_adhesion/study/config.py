@@ -541,7 +541,7 @@ def cohesive_input_at(study: Study, point: dict):
     """The cohesive case (`study.cohesive_case.CohesiveInput`) of a requested point
     ({factor: (value, place)}) of a study with `adhesion: {model: dugdale}`, checked by
     study.cohesive_case's rules; StudyError naming the point's places in the file."""
-    from .cohesive_case import cohesive_input
+    from .cohesive_case import ZONE_ELEMENTS, cohesive_input
     R = study.R_mm
     (t, t_place), (h, h_place) = point["t_over_R"], point["h_over_R"]
     (C10, c_place), (gamma, g_place) = point["C10_MPa"], point["gamma_J_m2"]
@@ -551,10 +551,10 @@ def cohesive_input_at(study: Study, point: dict):
                  interface="interface", mesh="mesh", adhesion="adhesion.model",
                  zone_elements="adhesion.zone_elements")
     delta_max = None if study.delta_max_over_R is None else study.delta_max_over_R * R
-    zone = {k: v for k, v in study.adhesion.items() if k == "zone_elements"}
     try:
         return cohesive_input(R, t * R, h * R, C10, [gamma], tabor=lam, delta_max_mm=delta_max,
-                              interface=study.interface, mesh=study.mesh, names=names, **zone)
+                              interface=study.interface, mesh=study.mesh, names=names,
+                              zone_elements=study.adhesion.get("zone_elements", ZONE_ELEMENTS))
     except InputError as e:         # the rule, named by the file's place
         raise StudyError(str(e)) from None
 

@@ -1,80 +1,109 @@
-"""Benchmark: which contact area the frictionless energy method should count.
+"""Benchmark: the frictionless energy method's contact area and adhesive edge force.
 
-    python benchmarks/frictionless_area.py [T_OVER_R] [MESH]
+    python benchmarks/frictionless_area.py [T_OVER_R] [MESH] [GAMMA_HAT]
 
-While a frictionless shell relaxes, its held nodes slide outward on the plane, so the
-area it covers grows beyond pi a^2 of the loading state.  The energy method (shell_adhesion.
-energy) takes G = dU_E/dA with A the loading state's area; this script takes the same
-relaxation paths (h = R, gamma / (C10 R) = 0.005, frictionless) and prints P* both ways:
-with A = pi a^2 of the loading state, and with the area each path actually covers at each
-delta (the deformed radius of its outermost held node, linear in delta between states).
-Dimensionless P* / (C10 R^2) and, for the base shell (R = 20 mm, C10 = 0.3 MPa), in N.
-The cohesive (Maugis-Dugdale) pull-off at growing lambda is the referee
-(docs/adhesion-range.md).
+While a frictionless shell relaxes at a fixed held set, its held nodes slide on the plane,
+so the area it covers, pi r_k(delta)^2 (r_k: the deformed radius of the outermost held
+node), is not pi a^2 of the loading state.  The held set's total potential is
+Pi_k(delta) = U_E - gamma pi r_k(delta)^2 (DESIGN.md section 10), whose -gamma pi r_k^2
+pulls the edge outward (solver.edge).  On the shell t/R, h = R at gamma / (C10 R) =
+GAMMA_HAT (default 0.005, the base shell's 30 J/m^2), this prints P* four ways:
+
+- `loading area`: G with pi a^2 of the loading state, P = P_rel (the energy method's
+  until the fourth wave; no energy functional produces it);
+- `covered, no edge force`: G with the covered areas at the same delta, P = P_rel;
+- `first order` (the energy method's): the same G, P = dPi/ddelta = P_rel - gamma dA/ddelta
+  (the edge force to first order in gamma on the paths relaxed without it);
+- `edge force on one node`: every path relaxed with the edge force 2 pi gamma r on the
+  edge node (solver.edge), P its rim force: exact for that model, whose line force is
+  log-singular, so it depends on the mesh (on the fine mesh it inverts the edge element).
+
+Dimensionless P* / (C10 R^2), and in N for the base shell (R = 20 mm, C10 = 0.3 MPa), with
+the dofs, the paths and the wall time of each set of relaxations.  The cohesive
+(Maugis-Dugdale) pull-off at growing lambda is the referee (docs/adhesion-range.md).
 """
-import dataclasses
 import sys
 import time
 
 import numpy as np
 
 from shell_adhesion import energy
-from shell_adhesion.solver.case import relax_from, relaxation_starts
+from shell_adhesion.errors import ConvergenceError
+from shell_adhesion.solver.case import Relaxation, relax_from, relaxation_starts
 from shell_adhesion.solver.forms import discretise
 from shell_adhesion.solver.geometry import Cap
 from shell_adhesion.solver.mesh import cap_mesh, mesh_spec
 from shell_adhesion.solver.path import load
 from shell_adhesion.solver.request import a_star_estimate, even_arc
 
-GAMMA_HAT = 0.005
 N_PER_UNIT = 0.3 * 20.0 ** 2          # C10 R^2 of the base shell, N
 
 
-def pull_offs(t_over_R=0.15, mesh="default"):
-    """(loading-area PullOff, covered-area PullOff, held-edge slides / R, dofs, paths) of
-    the shell t/R, h = R at GAMMA_HAT, frictionless (dimensionless, shell_adhesion.energy)."""
+class _NoEdgeForce(energy.EnergySurface):
+    """The surface with P = P_rel: the covered areas' G without the edge force."""
+
+    def P_pair(self, k, delta, gamma=0.0):
+        return super().P_pair(k, delta, 0.0)
+
+
+def relaxations(d, loading, gamma_hat, gamma_edge=0.0):
+    """The usable relaxation paths of every loaded state (upright part), and the wall time."""
+    t0 = time.perf_counter()
+    out = []
+    for start in relaxation_starts(loading, d.capmesh):
+        path = relax_from(d, "frictionless", start, gamma_max=gamma_hat, reach=1.5,
+                          gamma_edge=gamma_edge)
+        r = Relaxation.of(path, gamma_edge=gamma_edge)
+        if r.usable:
+            out.append(r.upright())
+    return out, time.perf_counter() - t0
+
+
+def pull_offs(t_over_R=0.15, mesh="default", gamma_hat=0.005, one_node=True):
+    """{variant: PullOff (dimensionless)} of the shell t/R, h = R, frictionless, and
+    {"dofs", "paths", "seconds", "slide"}: the held edge's slide / R over each path of the
+    paths relaxed without the edge force (its end minus its start)."""
     cap = Cap(float(t_over_R), 1.0)
-    a_need = a_star_estimate(cap, GAMMA_HAT)
+    a_need = a_star_estimate(cap, gamma_hat)
     d = discretise(cap_mesh(cap, mesh_spec(mesh, even_arc(cap, a_need))))
     loading = load(d, "frictionless", 0.3, a_stop=1.6 * a_need, stop_at_limit=True)
-    paths = []
-    for start in relaxation_starts(loading, d.capmesh):
-        rp = relax_from(d, "frictionless", start, gamma_max=GAMMA_HAT, reach=1.5)
-        if not (rp.penetration or rp.centre_lifts):
-            paths.append((start.a, rp.array("delta"), rp.array("P"), rp.array("U"),
-                          rp.array("dP_ddelta"), rp.array("a")))
-    surface = energy.energy_surface([p[:5] for p in paths])
-    loading_area = energy.pull_off(energy.equilibrium(surface, GAMMA_HAT))
-    covered = dataclasses.replace(surface, G=_covered_G(surface, paths))
-    covered_area = energy.pull_off(energy.equilibrium(covered, GAMMA_HAT))
-    slide = np.array([p[5][-1] - p[0] for p in paths])
-    return loading_area, covered_area, slide, d.ndof, len(paths)
+    paths, seconds = relaxations(d, loading, gamma_hat)
+    covered = energy.energy_surface([r.energy_path() for r in paths])
+    loaded = energy.energy_surface([r.energy_path()[:5] for r in paths])
+    fields = {f: getattr(covered, f) for f in covered.__dataclass_fields__}
+    out = {"loading area": loaded,
+           "covered, no edge force": _NoEdgeForce(**fields),
+           "first order": covered}
+    out = {k: energy.pull_off(energy.equilibrium(s, gamma_hat)) for k, s in out.items()}
+    info = {"dofs": d.ndof, "paths": len(paths), "seconds": {"gamma-free paths": seconds},
+            "slide": np.array([r.a_edge[-1] - r.a_edge[0] for r in paths])}
+    if one_node:
+        try:
+            edged, seconds = relaxations(d, loading, gamma_hat, gamma_hat)
+        except ConvergenceError as e:   # the line force inverts the edge element
+            info["one node fails"] = str(e)
+            return out, info
+        surface = energy.energy_surface([r.energy_path() for r in edged])
+        out["edge force on one node"] = energy.pull_off(energy.equilibrium(surface, gamma_hat))
+        info["seconds"]["edge-force paths"] = seconds
+    return out, info
 
 
-def main(t_over_R="0.15", mesh="default"):
+def main(t_over_R="0.15", mesh="default", gamma_hat="0.005"):
     t0 = time.perf_counter()
-    loading_area, covered_area, slide, ndof, n = pull_offs(float(t_over_R), mesh)
-    print(f"t/R {float(t_over_R):g}, {mesh} mesh, {ndof} dofs, {n} relaxation "
-          f"paths, {time.perf_counter() - t0:.1f} s")
-    for name, po in (("loading area", loading_area), ("covered area", covered_area)):
-        print(f"  {name}: P*/(C10 R^2) {po.P_star:.6f} ({po.P_star * N_PER_UNIT:.4f} N on the "
-              f"base shell), delta*/R {po.delta_star:.5f}")
-    print(f"  ratio covered / loading: {covered_area.P_star / loading_area.P_star:.4f}; the held "
-          f"edge slides by {np.median(slide):.3g} R (median over the paths, max {slide.max():.3g})")
-
-
-def _covered_G(surface, paths):
-    """dU_E/dA between neighbouring paths at each delta of the surface's grid, A the area
-    each path covers there (NaN where a pair does not overlap)."""
-    grid = surface.grid
-    U = np.full((len(paths), len(grid)), np.nan)
-    A = np.full_like(U, np.nan)
-    for k, (_, delta, _, _, _, a) in enumerate(paths):
-        inside = (grid >= delta.min()) & (grid <= delta[0])
-        order = np.argsort(delta)
-        A[k, inside] = np.pi * np.interp(grid[inside], delta[order], a[order]) ** 2
-        U[k, inside] = surface.splines[k](grid[inside])
-    return (U[1:] - U[:-1]) / (A[1:] - A[:-1])
+    got, info = pull_offs(float(t_over_R), mesh, float(gamma_hat))
+    print(f"t/R {float(t_over_R):g}, h/R 1, gamma/(C10 R) {float(gamma_hat):g}, {mesh} mesh, "
+          f"{info['dofs']} dofs, {info['paths']} relaxation paths, "
+          f"{time.perf_counter() - t0:.1f} s in all; relaxations: "
+          + ", ".join(f"{k} {v:.1f} s" for k, v in info["seconds"].items()))
+    for name, po in got.items():
+        print(f"  {name:24s} P*/(C10 R^2) {po.P_star:.6f} ({po.P_star * N_PER_UNIT:.4f} N on the "
+              f"base shell), a*/R {po.a_star:.5f}, delta*/R {po.delta_star:.5f}")
+    if "one node fails" in info:
+        print(f"  edge force on one node   fails: {info['one node fails']}")
+    slide = info["slide"]
+    print(f"  the held edge slides by {np.median(slide):.3g} R over a path (median; from "
+          f"{slide.min():.3g} to {slide.max():.3g} R)")
 
 
 if __name__ == "__main__":

@@ -1,19 +1,27 @@
 """Maugis' energy ("graphical") method on loading and relaxation paths.
 
 Dimensionless throughout: lengths / R, forces / (C10 R^2), energies / (C10 R^3),
-gamma / (C10 R).  For each held contact radius a, U_E(a, delta) is a quintic Hermite
-spline in delta through U_E, P = dU_E/ddelta and dP/ddelta at every state (its
-delta-derivative is P_rel exactly; error O(step^6), so a path needs few states).  G(A, delta) = dU_E/dA at fixed
-delta is the central difference between neighbouring paths, which is second-order
-accurate at the midpoint in A = pi a^2 of the pair and needs only the two paths to
-overlap in delta.  G does not depend on gamma, so it is built once per shell; every gamma
-is then a root search along each pair (equilibrium G = gamma) and a smooth interpolation
-of the equilibrium curve in a (pull-off points are extrema of smooth curves, not nodes).
+gamma / (C10 R).  For each held set k (the contact zone of one loading state),
+U_E(delta) is a quintic Hermite spline in delta through U_E, P = dU_E/ddelta and
+dP/ddelta at every state (its delta-derivative is P_rel exactly; error O(step^6)), and the
+area it covers, A_k(delta) = pi r_k(delta)^2, is a cubic Hermite spline through the held
+edge's deformed radius r_k and its slope (DESIGN.md section 10).  Where the held nodes
+cannot slide (no_slip) r_k is the loading state's a; frictionless, the edge slides.
+
+The total potential of held set k is Pi_k(delta) = U_E(delta) - gamma A_k(delta) (fixed
+grips; - P delta more at fixed load).  G(A, delta) = dU_E/dA at fixed delta is the
+difference between neighbouring held sets at the same delta, second-order accurate at the
+midpoint in A, and does not depend on gamma, so it is built once per shell.  Equilibrium
+is G = gamma; there P = dPi/ddelta = P_rel - gamma dA/ddelta (the adhesive edge force to
+first order in gamma: the relaxation paths themselves are solved without it) and a is the
+covered radius at that delta.  Every gamma is then a root search along each pair and a
+smooth interpolation of the equilibrium curve in a (pull-off points are extrema of smooth
+curves, not nodes).
 """
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
-from scipy.interpolate import BPoly, CubicSpline
+from scipy.interpolate import BPoly, CubicHermiteSpline, CubicSpline
 
 
 class OutOfRange(ValueError):
@@ -64,56 +72,100 @@ def hermite_quintic(x, y, dy, d2y) -> BPoly:
 
 @dataclass(frozen=True, eq=False)
 class EnergySurface:
-    a: np.ndarray          # (n,) held contact radii (deformed), increasing
+    a: np.ndarray          # (n,) held contact radii (deformed, at the loaded state), increasing
     delta1: np.ndarray     # (n,) loaded state of each path
     P1: np.ndarray
     delta_lo: np.ndarray   # (n,) lowest delta reached by each path
-    splines: tuple         # U_E(delta) per path
+    splines: tuple         # Pi_e(delta) = U_E - gamma_e A per path (its own P, dP/ddelta)
     grid: np.ndarray       # (m,) delta grid
-    a_pair: np.ndarray     # (n-1,) radius of the midpoint in A of paths k and k+1
-    G: np.ndarray          # (n-1, m) dU_E/dA at a_pair, NaN where the pair does not overlap
+    a_pair: np.ndarray     # (n-1,) radius of the midpoint in A of paths k and k+1 (loaded)
+    G: np.ndarray          # (n-1, m) dU_E/dA at fixed delta, A the areas covered at that
+    #                        delta; NaN where the pair does not overlap
+    edges: tuple = ()      # r_k(delta) per path: the held edge's deformed radius (the
+    #                        covered radius); () where no path's edge moves
+    gamma_edge: np.ndarray = None   # (n,) gamma_e each path was relaxed with (solver.edge)
 
     @property
     def A(self):
         return np.pi * self.a ** 2
 
+    def _g(self, k):
+        return 0.0 if self.gamma_edge is None else float(self.gamma_edge[k])
+
+    def A_covered(self, k, delta, order=0):
+        """pi r_k(delta)^2, the area held set k covers at delta, or its `order`-th
+        derivative in delta (1, 2)."""
+        if not self.edges:
+            return np.full(np.shape(delta), self.A[k] if order == 0 else 0.0)[()]
+        e = self.edges[k]
+        if order == 0:
+            return np.pi * e(delta) ** 2
+        if order == 1:
+            return 2 * np.pi * e(delta) * e(delta, 1)
+        return 2 * np.pi * (e(delta, 1) ** 2 + e(delta) * e(delta, 2))
+
+    def Pi(self, k, delta, gamma=0.0, order=0):
+        """Pi = U_E - gamma A of held set k at delta (fixed grips), or its `order`-th
+        derivative in delta: order 1 is P = P_rel - gamma dA/ddelta, the rim force with
+        the adhesive edge force of a sliding edge (exact at the path's own gamma_e, to
+        first order in gamma - gamma_e elsewhere)."""
+        return (self.splines[k](delta, order)
+                + (self._g(k) - gamma) * self.A_covered(k, delta, order))
+
     def U_E(self, k, delta):
-        return self.splines[k](delta)
+        return self.Pi(k, delta)
 
-    def P_rel(self, k, delta):
-        return self.splines[k](delta, 1)
+    def P_pair(self, k, delta, gamma=0.0):
+        """P = dPi/ddelta at the pair midpoint (mean of the two paths: second order in A)."""
+        return 0.5 * (self.Pi(k, delta, gamma, 1) + self.Pi(k + 1, delta, gamma, 1))
 
-    def P_pair(self, k, delta):
-        """P at the pair midpoint (mean of the two paths: second order in A)."""
-        return 0.5 * (self.P_rel(k, delta) + self.P_rel(k + 1, delta))
+    def a_pair_at(self, k, delta):
+        """Covered radius of the pair's midpoint in A at delta."""
+        return np.sqrt(0.5 * (self.A_covered(k, delta) + self.A_covered(k + 1, delta)) / np.pi)
 
 
 def energy_surface(paths, n_grid=2000) -> EnergySurface:
     """Build U_E(a, delta) and G(a, delta) from relaxation paths of increasing a.
 
     `paths` is a sequence of (a, delta[], P[], U[], dP_ddelta[]) with delta decreasing
-    from delta1.
+    from delta1, each optionally followed by (a_edge[], da_edge_ddelta[], gamma_e): the held
+    edge's deformed radius along the path, its slope and the gamma / (C10 R) of the edge
+    force the path was relaxed with (its U is then U_E - gamma_e pi a_edge^2 and its P
+    includes that force; absent: the edge stays at a, gamma_e = 0).
     """
     a = np.array([p[0] for p in paths])
     if np.any(np.diff(a) <= 0):
         raise ValueError("relaxation paths must have increasing contact radii")
-    splines, lo, d1, P1 = [], [], [], []
-    for _, delta, P, U, dP in paths:
+    splines, edges, lo, d1, P1 = [], [], [], [], []
+    for path in paths:
+        _, delta, P, U, dP = path[:5]
         order = np.argsort(delta)
         splines.append(hermite_quintic(delta[order], U[order], P[order], dP[order]))
+        if len(path) > 5:
+            r, dr = (np.asarray(v, dtype=float)[order] for v in path[5:7])
+            edges.append(CubicHermiteSpline(delta[order], r, dr) if len(r) > 1 else None)
         lo.append(delta.min())
         d1.append(delta[0])
         P1.append(P[0])
+    gamma_edge = np.array([float(p[7]) if len(p) > 7 else 0.0 for p in paths])
+    moves = any(np.any(np.asarray(p[6]) != 0) for p in paths if len(p) > 5)
+    if not moves or any(e is None for e in edges) or len(edges) != len(paths):
+        if np.any(gamma_edge > 0):
+            raise ValueError("paths relaxed with an edge force need their edge radii")
+        edges = []
     lo, d1 = np.array(lo), np.array(d1)
+    surface = EnergySurface(a, d1, np.array(P1), lo, tuple(splines), np.zeros(0),
+                            np.zeros(0), np.zeros((0, 0)), tuple(edges), gamma_edge)
     grid = np.linspace(lo.min(), d1.max(), n_grid)
     U = np.full((len(a), n_grid), np.nan)
-    for k, spl in enumerate(splines):
+    A = np.full((len(a), n_grid), np.nan)
+    for k in range(len(a)):
         inside = (grid >= lo[k]) & (grid <= d1[k])
-        U[k, inside] = spl(grid[inside])
-    A = np.pi * a ** 2
-    G = (U[1:] - U[:-1]) / np.diff(A)[:, None]
-    a_pair = np.sqrt(0.5 * (A[1:] + A[:-1]) / np.pi)
-    return EnergySurface(a, d1, np.array(P1), lo, tuple(splines), grid, a_pair, G)
+        U[k, inside] = surface.U_E(k, grid[inside])
+        A[k, inside] = surface.A_covered(k, grid[inside])
+    A_loaded = np.pi * a ** 2
+    a_pair = np.sqrt(0.5 * (A_loaded[1:] + A_loaded[:-1]) / np.pi)
+    return replace(surface, grid=grid, a_pair=a_pair, G=(U[1:] - U[:-1]) / (A[1:] - A[:-1]))
 
 
 @dataclass(frozen=True, eq=False)
@@ -158,13 +210,17 @@ def equilibrium(surface: EnergySurface, gamma: float) -> Equilibrium:
         j = above[0]
         t = (gamma - gk[j - 1]) / (gk[j] - gk[j - 1])
         delta = xk[j - 1] + t * (xk[j] - xk[j - 1])
-        a.append(surface.a_pair[k])
+        a.append(float(surface.a_pair_at(k, delta)))
         dl.append(delta)
-        Pl.append(float(surface.P_pair(k, delta)))
+        Pl.append(float(surface.P_pair(k, delta, gamma)))
     a, dl, Pl = map(np.array, (a, dl, Pl))
     if len(a) < 4:
         raise NotBracketed(f"gamma/(C10 R) = {gamma:g}: fewer than 4 relaxation paths reach "
                            "equilibrium; the paths are too short for this gamma", few=True)
+    if np.any(np.diff(a) <= 0):
+        raise NotBracketed(f"gamma/(C10 R) = {gamma:g}: the covered radii of the equilibrium "
+                           "points are not increasing: the held edges slide past each other",
+                           few=True)
     sP, sd = CubicSpline(a, Pl), CubicSpline(a, dl)
     return Equilibrium(gamma, a, dl, Pl, sP(a, 1) > 0, sd(a, 1) > 0)
 
@@ -213,26 +269,26 @@ def pull_off(eq: Equilibrium) -> PullOff:
 
 
 def total_energy_fixed_load(surface: EnergySurface, gamma: float, P: float):
-    """U_T(A; P) = U_E - P delta - gamma A on each path where P_rel reaches P: (A, U_T)."""
+    """U_T(A; P) = U_E - P delta - gamma A on each path where its P (EnergySurface.Pi)
+    reaches P: (A, U_T), A the area covered there."""
     A, UT = [], []
     for k in range(len(surface.a)):
         lo, hi = surface.delta_lo[k], surface.delta1[k]
         d = np.linspace(lo, hi, 400)
-        Pk = surface.P_rel(k, d)
+        Pk = surface.Pi(k, d, gamma, 1)
         if not (Pk.min() <= P <= Pk.max()):
             continue
-        j = np.argmin(np.abs(Pk - P))
-        # Newton polish on the Hermite spline
-        dj = d[j]
-        for _ in range(5):
-            dj -= (surface.P_rel(k, dj) - P) / surface.splines[k](dj, 2)
-        A.append(surface.A[k])
-        UT.append(float(surface.U_E(k, dj) - P * dj - gamma * surface.A[k]))
+        dj = d[np.argmin(np.abs(Pk - P))]
+        for _ in range(5):      # Newton polish on the splines
+            dj -= (surface.Pi(k, dj, gamma, 1) - P) / surface.Pi(k, dj, gamma, 2)
+        A.append(float(surface.A_covered(k, dj)))
+        UT.append(float(surface.Pi(k, dj, gamma) - P * dj))
     return np.array(A), np.array(UT)
 
 
 def total_energy_fixed_grips(surface: EnergySurface, gamma: float, delta: float):
-    """U_T(A; delta) = U_E - gamma A on each path whose range holds delta: (A, U_T)."""
+    """U_T(A; delta) = U_E - gamma A on each path whose range holds delta: (A, U_T), A the
+    area covered at delta."""
     k = np.flatnonzero((surface.delta_lo <= delta) & (surface.delta1 >= delta))
-    U = np.array([surface.U_E(i, delta) for i in k])
-    return surface.A[k], U - gamma * surface.A[k]
+    A = np.array([surface.A_covered(i, delta) for i in k], dtype=float)
+    return A, np.array([surface.Pi(i, delta, gamma) for i in k], dtype=float)

@@ -30,9 +30,11 @@ def test_notebook_snippet_runs_from_another_folder(tmp_path):
 
 
 @pytest.mark.parametrize("case,row_start", [
-    (("default", "no_slip", "neo_hooke"), "default mesh, both interfaces: "),
+    (("default", "no_slip", "neo_hooke"), "default mesh, no_slip: "),
+    (("default", "frictionless", "neo_hooke"), "; frictionless: "),
     (("default", "no_slip", "mooney_rivlin"), "Mooney-Rivlin (C01 = C10/2): "),
-    (("coarse", "no_slip", "neo_hooke"), "coarse mesh (CI): ")])
+    (("coarse", "no_slip", "neo_hooke"), "coarse mesh (CI), no_slip: "),
+    (("coarse", "frictionless", "neo_hooke"), "-0.58 %; frictionless: ")])
 def test_jkr_row_is_what_test_jkr_holds(case, row_start):
     from test_jkr import STATED
     line = next(l for l in README.splitlines() if l.startswith("| JKR, solid hemisphere"))

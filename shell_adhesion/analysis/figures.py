@@ -296,7 +296,8 @@ def fig_load_relaxation(ds, at=None, n_paths=8, ax=None):
 
 def _surface(ds, p):
     """U_E(a, delta) of the shell at `p`, dimensionless, from the stored relaxation
-    curves (the paths the energy method used, as in PathSet.surface)."""
+    curves (the paths the energy method used, as in PathSet.surface, with the areas they
+    cover where the cube has them)."""
     shell = _shell(ds, p)
     R, C10 = float(ds["R"]), p["C10"]
     a = ds["relaxation_a_mm"].sel(shell).values
@@ -305,8 +306,12 @@ def _surface(ds, p):
     for k in np.flatnonzero(used & ~np.isnan(a)):
         d, P, dP = _relaxation(ds, p, k)
         U = ds["relaxation_U"].sel(C10=C10, **shell).values[k][:len(d)]
-        paths.append((a[k] / R, d / R, P / (C10 * R ** 2), U / (C10 * R ** 3),
-                      dP / (C10 * R)))
+        path = (a[k] / R, d / R, P / (C10 * R ** 2), U / (C10 * R ** 3), dP / (C10 * R))
+        if "relaxation_edge_mm" in ds:      # the covered radius along the path
+            edge = ds["relaxation_edge_mm"].sel(shell).values[k][:len(d)] / R
+            slope = ds["relaxation_dedge_ddelta"].sel(shell).values[k][:len(d)]
+            path += (edge, slope)
+        paths.append(path)
     paths.sort(key=lambda x: x[0])
     return energy_surface(paths)
 

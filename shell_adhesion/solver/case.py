@@ -66,7 +66,7 @@ def has_hole(state: State) -> bool:
 
 def relax_from(d: Discretisation, interface: str, start: State, gamma_max: float = GAMMA_MAX,
                settings: Settings = Settings(), progress=None,
-               reach: float = 1.0) -> RelaxationPath:
+               reach: float = 1.0, gamma_edge: float = 0.0) -> RelaxationPath:
     """Relax one loaded state until the estimated G exceeds G_SAFETY * reach * gamma_max
     (`reach` > 1 takes a path further, where its pair's G fell short: solver.request).
 
@@ -88,7 +88,7 @@ def relax_from(d: Discretisation, interface: str, start: State, gamma_max: float
             progress(s.delta)
         return flat_punch_G(start, s) >= G_stop
 
-    return relax(d, interface, start, stop, step, settings)
+    return relax(d, interface, start, stop, step, settings, gamma_edge)
 
 
 @dataclass(frozen=True, eq=False)
@@ -113,11 +113,17 @@ class Relaxation:
     V: np.ndarray = None    # cavity: enclosed volume / R^3 along the path (NaN if open)
     p: np.ndarray = None    # cavity: gauge pressure / C10 along the path (NaN if open)
     reach: float = 1.0      # its stop rule's G_SAFETY * reach * gamma_max (relax_from)
+    a_edge: np.ndarray = None     # deformed radius / R of the held edge along the path (the
+    #                               covered radius r_k(delta); a where the edge cannot slide)
+    da_ddelta: np.ndarray = None  # its slope d a_edge / d delta along the path
+    gamma_edge: float = 0.0       # gamma / (C10 R) of the edge force it was relaxed with
+    #                               (solver.edge; its U is then U_E - gamma_edge pi a_edge^2)
 
     def __post_init__(self):
-        for name in ("V", "p"):
+        for name, fill in (("V", np.nan), ("p", np.nan), ("a_edge", self.a),
+                           ("da_ddelta", 0.0)):
             if getattr(self, name) is None:
-                object.__setattr__(self, name, np.full(len(self.delta), np.nan))
+                object.__setattr__(self, name, np.full(len(self.delta), fill))
 
     @property
     def usable(self) -> bool:
@@ -139,10 +145,11 @@ class Relaxation:
             return self
         keep = self._upright
         return replace(self, **{k: getattr(self, k)[keep]
-                                for k in ("delta", "P", "U", "dP_ddelta", "V", "p")})
+                                for k in _PER_STATE})
 
     @classmethod
-    def of(cls, path: RelaxationPath, d: Discretisation = None, reach: float = 1.0):
+    def of(cls, path: RelaxationPath, d: Discretisation = None, reach: float = 1.0,
+           gamma_edge: float = 0.0):
         """The path's arrays; with `d`, also its views (see `relaxation_views`); `reach` as
         the path was relaxed (relax_from)."""
         start_off = has_hole(path.start) or path.start.centre_off
@@ -153,7 +160,17 @@ class Relaxation:
                    path.centre_lifts or start_off, path.timer.newton_iterations,
                    relaxation_views(d, path) if d is not None else (),
                    float(inversion), q.J_min, q.J_max, q.detF_min, path.timer.as_dict(),
-                   path.array("V"), path.array("p"), float(reach))
+                   path.array("V"), path.array("p"), float(reach), path.array("a"),
+                   path.array("da_ddelta"), float(gamma_edge))
+
+    def energy_path(self) -> tuple:
+        """(a, delta, P, U, dP/ddelta, a_edge, da_edge/ddelta, gamma_edge) as
+        energy_surface takes it."""
+        return (self.a, self.delta, self.P, self.U, self.dP_ddelta, self.a_edge,
+                self.da_ddelta, self.gamma_edge)
+
+
+_PER_STATE = ("delta", "P", "U", "dP_ddelta", "V", "p", "a_edge", "da_ddelta")
 
 
 def loading_views(d: Discretisation, loading: LoadingPath) -> tuple:
@@ -195,6 +212,8 @@ class PathSet:
     loading_p: np.ndarray = None    # cavity: gauge pressure / C10 (NaN if open)
     cavity: Cavity = OPEN           # what fills the cavity (solver.cavity)
     uniform: float = None           # arc / R meshed evenly from the apex (None: the family's)
+    gamma_edge: float = 0.0         # gamma / (C10 R) of the edge force the paths were relaxed
+    #                                 with (frictionless, solver.edge; 0: none, first order)
 
     def __post_init__(self):
         for name in ("loading_V", "loading_p"):
@@ -207,7 +226,7 @@ class PathSet:
 
     @cached_property
     def _surface(self) -> EnergySurface:
-        return energy_surface([(r.a, r.delta, r.P, r.U, r.dP_ddelta) for r in self.usable()])
+        return energy_surface([r.energy_path() for r in self.usable()])
 
     def usable(self) -> tuple:
         """Relaxation paths the energy method uses (by increasing a), each up to where its
@@ -383,7 +402,7 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
                 settings: Settings = Settings(), relax_paths: bool = True,
                 progress=None, map=None, path_progress=None,
                 material: Material = NEO_HOOKE, cavity: Cavity = OPEN, uniform: float = None,
-                a_stop: float = None, reach=None, known=None) -> tuple:
+                a_stop: float = None, reach=None, known=None, gamma_edge: float = 0.0) -> tuple:
     """Loading and relaxation paths of one shell: (PathSet, Discretisation, LoadingPath).
 
     A loading that reaches the element-quality limit (or stalls) before delta_max stops
@@ -398,7 +417,10 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
     loading ends, before delta_max) fit the paths to a request (solver.request);
     `reach(start)` gives a start's relax_from reach (default 1), and `known` maps
     `start_key(start, reach)` to a Relaxation already computed (it is not solved again;
-    the paths this call relaxes are added to it).
+    the paths this call relaxes are added to it).  `gamma_edge` > 0 (gamma / (C10 R),
+    frictionless): every path is relaxed with the adhesive edge force of that gamma
+    (solver.edge), so the set answers that gamma exactly and others to first order in the
+    difference (shell_adhesion.energy).
     """
     if not (isinstance(gamma_max, (int, float)) and math.isfinite(gamma_max) and gamma_max > 0):
         raise InputError(f"gamma_max: {shown(gamma_max)} must be a finite number > 0 (gamma/(C10 R))")
@@ -419,8 +441,9 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
         todo = [i for i in range(len(starts)) if i not in done]
         if map is None:
             for n, i in enumerate(todo):
-                path = relax_from(d, interface, starts[i], gamma_max, settings, reach=reaches[i])
-                done[i] = Relaxation.of(path, d if i == last else None, reaches[i])
+                path = relax_from(d, interface, starts[i], gamma_max, settings, reach=reaches[i],
+                                  gamma_edge=gamma_edge)
+                done[i] = Relaxation.of(path, d if i == last else None, reaches[i], gamma_edge)
                 if path_progress is not None:
                     path_progress(n + 1, len(todo))
         else:
@@ -429,7 +452,7 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
                       [starts[i] for i in todo], [gamma_max] * n, [settings] * n,
                       [i == last for i in todo], [material] * n, [cavity] * n,
                       [cavity_lift(d)] * n, [None] * n, [uniform] * n,
-                      [reaches[i] for i in todo])
+                      [reaches[i] for i in todo], [gamma_edge] * n)
             done.update(zip(todo, out))
         relaxations = tuple(done[i] for i in range(len(starts)))
         if known is not None:
@@ -445,7 +468,7 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
                  timing=timing_stats(loading.timer, relaxations))
     return pathset_of(t, h, interface, mesh, delta_max, gamma_max, loading, relaxations,
                       stats, loading_views(d, loading), cavity, cavity_lift(d),
-                      uniform), d, loading
+                      uniform, gamma_edge), d, loading
 
 
 def start_key(start: State, reach: float = 1.0) -> tuple:
@@ -476,7 +499,8 @@ def timing_stats(loading_timer, relaxations) -> dict:
 
 
 def pathset_of(t, h, interface, mesh, delta_max, gamma_max, loading, relaxations, stats,
-               views=(), cavity: Cavity = OPEN, lift: float = 0.0, uniform: float = None):
+               views=(), cavity: Cavity = OPEN, lift: float = 0.0, uniform: float = None,
+               gamma_edge: float = 0.0):
     """The PathSet of a loading path, its Relaxations and the loading views; the
     relaxations' views move to the set's (profiles, then stress maps, each in stage order).
     The set's stats gain the element quality and the contact-zone inversion
@@ -497,7 +521,7 @@ def pathset_of(t, h, interface, mesh, delta_max, gamma_max, loading, relaxations
                    loading.array("delta"), loading.array("P"), loading.array("a"),
                    loading.array("U"), loading.array("joined"), relaxations, stats, views,
                    loading.array("V"), loading.array("p"), cavity,
-                   None if uniform is None else float(uniform))
+                   None if uniform is None else float(uniform), float(gamma_edge))
 
 
 def G_reached(relaxations, surface=None):
@@ -507,7 +531,7 @@ def G_reached(relaxations, surface=None):
     if len(usable) < 2:
         return np.zeros(0), np.zeros(0)
     surf = surface() if surface is not None else energy_surface(
-        [(r.a, r.delta, r.P, r.U, r.dP_ddelta) for r in usable])
+        [r.energy_path() for r in usable])
     with np.errstate(invalid="ignore"):
         G = np.array([np.nanmax(g) if np.isfinite(g).any() else np.nan for g in surf.G])
     return surf.a_pair, G
@@ -554,14 +578,17 @@ def relaxation_task(t: float, h: float, interface: str, mesh: str, start: State,
                     gamma_max: float = GAMMA_MAX, settings: Settings = Settings(),
                     views: bool = False, material: Material = NEO_HOOKE,
                     cavity: Cavity = OPEN, lift: float = 0.0, progress=None,
-                    uniform: float = None, reach: float = 1.0) -> Relaxation:
+                    uniform: float = None, reach: float = 1.0,
+                    gamma_edge: float = 0.0) -> Relaxation:
     """One relaxation path as an independent task (the discretisation is built once per
     process: `task_discretisation`); with `views`, it keeps the path's profiles and stress
     map; `progress` and `reach` as in `relax_from`.  A closed `cavity` needs the loading's
-    `lift` (`cavity_lift`); `uniform` is the mesh's even arc (solver.mesh.mesh_spec)."""
+    `lift` (`cavity_lift`); `uniform` is the mesh's even arc (solver.mesh.mesh_spec);
+    `gamma_edge` the edge force's gamma / (C10 R) (solve_paths)."""
     d = task_discretisation(t, h, mesh, material, cavity, lift, uniform)
-    return Relaxation.of(relax_from(d, interface, start, gamma_max, settings, progress, reach),
-                         d if views else None, reach)
+    return Relaxation.of(relax_from(d, interface, start, gamma_max, settings, progress, reach,
+                                    gamma_edge),
+                         d if views else None, reach, gamma_edge)
 
 
 @lru_cache(maxsize=2)

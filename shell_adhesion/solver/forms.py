@@ -38,6 +38,7 @@ class Discretisation:
     csr_slot: np.ndarray # (E * 22 * 22,) position of each element entry in the CSR data
     material: Material = NEO_HOOKE
     cavity: object = None  # solver.cavity.CavityLoad of a closed cavity (cavity.bind), else None
+    edge: object = None    # solver.edge.EdgeAdhesion of a sliding held set's edge, else None
 
     @property
     def force_scale(self) -> float:
@@ -194,10 +195,12 @@ def _residual(d, dL, dLdp):
 
 
 def potential_energy(d: Discretisation, x) -> float:
-    """Strain energy plus the energy of the cavity's pressure load (solver.cavity), units
-    of C10 R^3: the U_E of Maugis' method."""
+    """Strain energy plus the energy of the cavity's pressure load (solver.cavity) and of
+    a sliding held edge's adhesion (solver.edge), units of C10 R^3: the U_E of Maugis'
+    method (with the edge: U_E - gamma pi r^2)."""
     U = strain_energy(d, x)
-    return U if d.cavity is None else U + d.cavity.energy(x)
+    U = U if d.cavity is None else U + d.cavity.energy(x)
+    return U if d.edge is None else U + d.edge.energy(x)
 
 
 def _scatter_vector(d, ru, jw):
@@ -230,12 +233,18 @@ class Linearisation:
         dL, _, _, _, dLdp, _ = self.derivatives
         self._r = _residual(d, dL, dLdp)
         self.r = self._r if d.cavity is None else d.cavity.add_residual(x, self._r)
+        if d.edge is not None:          # solver.edge
+            self.r = d.edge.add_residual(x, self.r)
 
     def tangent(self):
         """(K, r): the consistent tangent (CSR, symmetric indefinite) and residual."""
         d, r = self.d, self._r
         K = _stiffness(d, *self.derivatives)
-        return (K, r) if d.cavity is None else d.cavity.add_tangent(K, r, self.x)  # solver.cavity
+        if d.cavity is not None:
+            K, r = d.cavity.add_tangent(K, r, self.x)       # solver.cavity
+        if d.edge is not None:
+            K, r = d.edge.add_tangent(K), self.r            # solver.edge
+        return K, r
 
 
 def _stiffness(d: Discretisation, dL, d2L, J, dJ, dLdp, d2Ldp2):

@@ -16,6 +16,7 @@ import numpy as np
 
 from .contact import (Constraints, constraints, contact_reactions, deformed_radius, gaps,
                       rim_load)
+from .edge import with_edge
 from .forms import (Discretisation, Linearisation, deformation, potential_energy, tangent,
                     tangent_pattern)
 from .geometry import shown
@@ -102,6 +103,8 @@ class State:
     p: float = np.nan         # cavity: gauge pressure / C10
     dx_ddelta: np.ndarray = field(default=None, repr=False)  # dx/ddelta with this state's
     #                           held set (rim dofs -1), where dP_ddelta was computed
+    da_ddelta: float = np.nan  # d a / d delta of a relaxation state at its held set (0 where
+    #                           the held nodes cannot slide; frictionless: the edge slides)
 
 
 @dataclass(frozen=True, eq=False)
@@ -548,8 +551,12 @@ def _release_tensile(pb, x, delta, K, r, held, c, hist):
 
 
 def relax(d: Discretisation, interface: str, start: State, stop, step: float,
-          settings: Settings = Settings()) -> RelaxationPath:
+          settings: Settings = Settings(), gamma_edge: float = 0.0) -> RelaxationPath:
     """Lower delta from `start` with its held nodes kept, in steps of about `step`.
+
+    `gamma_edge` > 0 (gamma / (C10 R), frictionless only): the held edge carries the
+    adhesive edge force (solver.edge); the path then starts with the loaded state
+    re-equilibrated under it at the same delta, and each state's U is U_E - gamma pi r^2.
 
     `stop(state)` ends the path when it returns True (the state is kept).  A step is
     halved while it is not energy-consistent (`step_mismatch` above
@@ -560,15 +567,27 @@ def relax(d: Discretisation, interface: str, start: State, stop, step: float,
     if not (math.isfinite(step) and step > 0):
         raise ValueError(f"relaxation step: {shown(step)} must be a finite number > 0 (units of R)")
     timer = Timer()
-    pb = _Problem(d, interface, settings, timer)
     held = list(start.held)
+    if gamma_edge > 0:
+        if interface != "frictionless":
+            raise ValueError(f"gamma_edge: {gamma_edge:g} needs the frictionless interface "
+                             f"(held nodes of {interface} do not slide)")
+        d = with_edge(d, held, gamma_edge)
+    pb = _Problem(d, interface, settings, timer)
     c = constraints(d, interface, held)
     x, delta = start.x.copy(), start.delta
+    if gamma_edge > 0:          # the loaded state, re-equilibrated with the edge force
+        x, _, K, r, hist = pb.newton(c, x, delta)
+        dx, dP = pb.tangent_direction(K, c, pb.last_lu)
+        start = replace(pb.state(x, delta, r, held, start.joined, hist, dP,
+                                 centre_off=centre_pulled(d, r, held), check_J=False),
+                        dx_ddelta=dx, dP_ddelta_left=dP)
     if settings.start_tangent and start.dx_ddelta is not None:
         dx, dP = start.dx_ddelta, start.dP_ddelta     # the loading's, with these held nodes
     else:
         dx, dP = pb.tangent_direction(pb.assemble(x)[0], c)
-    states = [_with_stiffness(start, dP, dx)]
+    edge_ur = d.ur(d.capmesh.outer[max(held)])      # the held edge's radial dof
+    states = [replace(_with_stiffness(start, dP, dx), da_ddelta=float(dx[edge_ur]))]
     outside = np.setdiff1d(np.arange(len(d.capmesh.outer)), held)
     h = step
     penetration = centre_lifts = False
@@ -604,6 +623,7 @@ def relax(d: Discretisation, interface: str, start: State, stop, step: float,
         try:
             s = pb.state(x, delta, r, held, -1, hist, dP, centre_off=pulled, check_J=False,
                          U=Un)
+            s = replace(s, da_ddelta=float(dx[edge_ur]))
         except QualityError as err:
             ended_by = str(err)
             break

@@ -19,7 +19,7 @@ from .case import PathSet, Relaxation
 from .cavity import Cavity
 from .postprocess import Profile, StressMap
 
-LAYOUT = 3          # version of this layout (part of the catalogue key of a path set)
+LAYOUT = 4          # version of this layout (part of the catalogue key of a path set)
 
 
 # descriptions of known fields; a field the solver adds later is stored all the same
@@ -34,6 +34,8 @@ _LONG_NAMES = {
     "relaxation_V": "cavity volume V / R^3 (NaN: open)",
     "relaxation_p": "cavity gauge pressure p / C10 (NaN: open)",
     "relaxation_a": "held contact radius a / R of the path",
+    "relaxation_a_edge": "deformed radius / R of the held edge (covered radius) along the path",
+    "relaxation_da_ddelta": "its slope d a_edge / d delta along the path",
     "relaxation_delta": "rim displacement delta / R",
     "relaxation_P": "rim force P / (C10 R^2)",
     "relaxation_U": "strain energy U / (C10 R^3)",
@@ -151,6 +153,7 @@ def to_dataset(ps: PathSet) -> xr.Dataset:
         **{a: getattr(ps, f) for f, a in _ATTRS.items()})
     if ps.uniform is not None:      # the even arc the set was meshed with (solver.request)
         attrs["uniform_arc_over_R"] = float(ps.uniform)
+    attrs["gamma_edge_hat"] = float(ps.gamma_edge)     # the edge force's gamma (solver.edge)
     return xr.Dataset(data, attrs=attrs)
 
 
@@ -169,6 +172,7 @@ def from_dataset(ds: xr.Dataset) -> PathSet:
         kw["cavity"] = Cavity(**json.loads(ds.attrs["cavity"]))
     if "uniform_arc_over_R" in ds.attrs:
         kw["uniform"] = float(ds.attrs["uniform_arc_over_R"])
+    kw["gamma_edge"] = float(ds.attrs.get("gamma_edge_hat", 0.0))
     return PathSet(relaxations=_relaxations_of(ds), stats=json.loads(ds.attrs["stats"]),
                    views=_views_of(ds), **kw)
 

@@ -556,6 +556,8 @@ def _relaxation_curves(served, index, shells, C10s, R) -> dict:
     P = _padded(shells, {j: [r.P for r in v] for j, v in rel.items()}, width)
     U = _padded(shells, {j: [r.U for r in v] for j, v in rel.items()}, width)
     dP = _padded(shells, {j: [r.dP_ddelta for r in v] for j, v in rel.items()}, width)
+    edge = _padded(shells, {j: [r.a_edge for r in v] for j, v in rel.items()}, width)
+    slope = _padded(shells, {j: [r.da_ddelta for r in v] for j, v in rel.items()}, width)
     a = _padded(shells, {j: [r.a for r in v] for j, v in rel.items()}, ())
     used = _padded(shells, {j: [float(r.usable) for r in v]
                             for j, v in rel.items()}, ())
@@ -575,6 +577,11 @@ def _relaxation_curves(served, index, shells, C10s, R) -> dict:
             "mJ", "strain energy U_E along the relaxation at fixed contact radius")),
         "relaxation_dP_ddelta": (("C10", *K), force_N(dP[None], c, R) / R, _attrs(
             "N/mm", "stiffness dP/d(delta) along the relaxation at fixed contact radius")),
+        "relaxation_edge_mm": (K, length_mm(edge, R), _attrs(
+            "mm", "deformed radius of the held edge along the relaxation (the covered radius; "
+                  "frictionless edges slide, no_slip ones stay at relaxation_a_mm)")),
+        "relaxation_dedge_ddelta": (K, slope, _attrs(
+            "1", "slope d(relaxation_edge_mm)/d(relaxation_delta_mm) along the relaxation")),
     }
 
 

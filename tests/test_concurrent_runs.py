@@ -30,6 +30,13 @@ error_bars: false
 RUN_TIMEOUT_S = 300     # a run that hangs fails the test instead of stalling the suite
 
 
+@pytest.fixture(autouse=True)
+def short_waits(monkeypatch):
+    """A claim that is wrongly never taken over ends a waiting test in seconds, not hours."""
+    monkeypatch.setattr(sharing, "WAIT_LIMIT_S", 3.0)
+    monkeypatch.setattr(sharing, "POLL_S", 0.1)
+
+
 def shell(t_over_R=0.15):
     key = pathset_key(t_over_R, 1.0, "no_slip", "coarse", 0.1, 0.01)
     return SimpleNamespace(key=key, fingerprint=fingerprint(key))
@@ -40,18 +47,15 @@ def quiet():
                     enabled=False)
 
 
-def a_dead_pid() -> int:
-    """The pid of a process of this host that has ended."""
-    proc = subprocess.Popen([sys.executable, "-c", "pass"])
-    proc.wait(timeout=60)
-    return proc.pid
-
-
-def claim_as(cat, fp, run_id, pid):
-    """A claim on `fp` made by process `pid` (another run)."""
-    cat.claim([fp], run_id, "other", stale_s=60)
-    with cat._write():
-        cat.db.execute("UPDATE claims SET pid = ? WHERE fingerprint = ?", (pid, fp))
+def die_holding(directory, fp, run_id):
+    """Claim the set `fp` in the catalogue at `directory` for run `run_id` of another
+    process, which then dies without releasing it."""
+    code = ("import os, sys; from shell_adhesion.catalogue import Catalogue; "
+            "Catalogue(sys.argv[1]).claim([sys.argv[2]], int(sys.argv[3]), 'dies', 60); "
+            "os._exit(9)")
+    proc = subprocess.run([sys.executable, "-c", code, str(directory), fp, str(run_id)],
+                          cwd=REPO, env=ENV, capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 9, proc.stderr
 
 
 def load(path):
@@ -104,7 +108,8 @@ def test_a_claim_is_exclusive_until_its_run_is_gone(tmp_path):
         cat.release_claims(1)
         assert cat.claim([fp], 2, "second", stale_s=60) == {}
         cat.release_claims(2)
-        claim_as(cat, fp, 3, a_dead_pid())
+        die_holding(tmp_path, fp, 3)
+        assert cat.claim_of(fp).run == 3
         assert cat.claim([fp], 4, "fourth", stale_s=60) == {}    # taken over
         assert [c.run for c in cat.taken_over] == [3]
         assert cat.claim_of(fp).run == 4
@@ -114,7 +119,7 @@ def test_a_waiting_run_takes_what_another_stored(tmp_path):
     s = shell()
     with Catalogue(tmp_path) as cat:
         cat.store(s.key, xr.Dataset({"x": ("i", [1.0, 2.0])}))
-        claim_as(cat, s.fingerprint, 1, os.getpid())      # its owner has not released it
+        cat.claim([s.fingerprint], 1, "first", 60)      # its owner has not released it yet
         computed = []
         shared = sharing.settle([s], sharing.Claims(cat, 2, "second", 60), computed.extend,
                                 quiet(), run.Tally())
@@ -124,8 +129,8 @@ def test_a_waiting_run_takes_what_another_stored(tmp_path):
 
 def test_the_claim_of_a_dead_run_is_taken_over(tmp_path):
     dead, alive = shell(0.15), shell(0.2)
+    die_holding(tmp_path, dead.fingerprint, 1)
     with Catalogue(tmp_path) as cat:
-        claim_as(cat, dead.fingerprint, 1, a_dead_pid())
         computed = []
 
         def compute(shells):
@@ -143,7 +148,7 @@ def test_the_claim_of_a_dead_run_is_taken_over(tmp_path):
 def test_a_failure_of_the_owner_is_reported_not_recomputed(tmp_path):
     s = shell()
     with Catalogue(tmp_path) as cat:
-        claim_as(cat, s.fingerprint, 1, os.getpid())
+        cat.claim([s.fingerprint], 1, "first", 60)
         claim = cat.claim_of(s.fingerprint)
         cat.record_failure(s.key, "loading: it broke")
         cat.release_claims(1)

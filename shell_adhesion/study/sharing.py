@@ -68,8 +68,8 @@ def settle(shells, claims: Claims, compute, progress, tally) -> dict:
             break
         held = claims.take(todo)
         for claim in claims.cat.taken_over:
-            progress.say(f"took over path set {claim.fingerprint[:12]} from {claim} "
-                         "(its run is gone)")
+            progress.say(f"took over path set {claim.fingerprint[:12]} from {claim}: that "
+                         "run is gone")
         claims.cat.taken_over.clear()
         mine = []
         for s in todo:

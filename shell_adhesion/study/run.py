@@ -5,7 +5,9 @@ The loading of a shell is one task and each of its relaxation paths another; wor
 compute.  This (client) process stores every finished relaxation path in the catalogue at
 once (a part of its shell's set) and the whole set when its last path arrives, so a run
 killed at any moment loses only the tasks still running; it alone writes the results.  A
-shell whose paths fail is recorded with its reason and the rest continue.
+shell whose paths fail is recorded with its reason and the rest continue.  Runs sharing a
+catalogue compute each set once: a set another run is computing is waited for
+(study.sharing).
 
 `run_study` is the one entry point (the `shell-adhesion run` command calls it).
 """

@@ -69,7 +69,7 @@ def settle(shells, claims: Claims, compute, progress, tally) -> dict:
         held = claims.take(todo)
         for claim in claims.cat.taken_over:
             progress.say(f"took over path set {claim.fingerprint[:12]} from {claim}: that "
-                         "run is gone")
+                         "run ended or went silent")
         claims.cat.taken_over.clear()
         mine = []
         for s in todo:
@@ -99,7 +99,7 @@ def _wait(shells, held: dict, claims: Claims, progress, tally, shared) -> list:
         return []
     cat, t0 = claims.cat, time.monotonic()
     said = None
-    while True:
+    while True:                 # bounded: WAIT_LIMIT_S
         interrupt.check()       # Ctrl-C while waiting: nothing of this run is in flight
         free, waiting = [], []
         for s in shells:

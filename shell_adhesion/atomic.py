@@ -57,7 +57,8 @@ def atomic_path(path):
     fsync_dir(path.parent)
 
 
-def _alive(pid: int) -> bool:
+def alive(pid: int) -> bool:
+    """A process `pid` of this host exists (one of another user counts)."""
     try:
         os.kill(pid, 0)
     except ProcessLookupError:
@@ -72,7 +73,7 @@ def _orphan(p: Path) -> bool:
     than STALE_S."""
     parts = p.name.rsplit(".tmp-", 1)[-1].split("-")
     if len(parts) >= 3 and parts[0] == _host() and parts[1].isdigit():
-        return int(parts[1]) != os.getpid() and not _alive(int(parts[1]))
+        return int(parts[1]) != os.getpid() and not alive(int(parts[1]))
     return time.time() - p.stat().st_mtime > STALE_S
 
 

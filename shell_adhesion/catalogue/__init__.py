@@ -7,9 +7,9 @@ layout and the trust rule.  This package imports nothing from the solver.
 """
 from .fingerprint import canonical_json, family, fingerprint
 from .files import CorruptFile, write_atomic
-from .store import (COLUMNS, ENV_VAR, Catalogue, Entry, default_dir, format_entries,
-                    list_entries)
+from .store import (COLUMNS, ENV_VAR, Catalogue, Claim, Entry, default_dir,
+                    format_entries, list_entries)
 
 __all__ = ["canonical_json", "family", "fingerprint", "CorruptFile", "write_atomic",
-           "COLUMNS", "ENV_VAR", "Catalogue", "Entry", "default_dir", "format_entries",
-           "list_entries"]
+           "COLUMNS", "ENV_VAR", "Catalogue", "Claim", "Entry", "default_dir",
+           "format_entries", "list_entries"]

@@ -13,6 +13,13 @@ nothing of the solver.
 The folder is `--catalogue DIR`, else $SHELL_ADHESION_CATALOGUE, else ./catalogue-data in
 the directory the command runs in.
 
+Claims (the `claims` table): a run claims each path set it is about to compute, in one
+write transaction, so that of two runs sharing the folder one computes the set and the
+other waits for it (study.sharing).  The owner refreshes its claims while it works and
+deletes them when it ends; a claim whose process is dead (on this host) or that has not
+been refreshed for the claimant's `stale_s` is taken over, so a run that dies blocks
+nobody for longer than that.
+
 Trust rule: a path set is used only if its row says 'ok' and the file's sha256 matches the
 row; anything else (missing, truncated, altered file) is dropped and recomputed.  A path
 set (or part) is stored file first (atomically), row second, both under the index's write lock, so a
@@ -27,11 +34,12 @@ import os
 from pathlib import Path
 import socket
 import sqlite3
+import time
 
 import xarray as xr
 
 from . import files
-from shell_adhesion.atomic import clean_temporaries
+from shell_adhesion.atomic import alive, clean_temporaries
 from .fingerprint import canonical_json, family, fingerprint
 
 ENV_VAR = "SHELL_ADHESION_CATALOGUE"
@@ -80,6 +88,15 @@ CREATE TABLE IF NOT EXISTS parts (
     created TEXT NOT NULL,
     PRIMARY KEY (owner, part)
 );
+CREATE TABLE IF NOT EXISTS claims (
+    fingerprint TEXT PRIMARY KEY,
+    run INTEGER NOT NULL,
+    study TEXT,
+    host TEXT NOT NULL,
+    pid INTEGER NOT NULL,
+    claimed TEXT NOT NULL,
+    refreshed REAL NOT NULL
+);
 CREATE TABLE IF NOT EXISTS runs (
     id INTEGER PRIMARY KEY AUTOINCREMENT,
     study TEXT,
@@ -127,6 +144,31 @@ class Entry:
     sha256: str
 
 
+@dataclass(frozen=True)
+class Claim:
+    """A run computing a path set now: its run id (the runs table), study, host and
+    process, when it claimed the set (ISO time, UTC) and its last sign of life
+    (time.time())."""
+
+    fingerprint: str
+    run: int
+    study: str
+    host: str
+    pid: int
+    claimed: str
+    refreshed: float
+
+    def stale(self, stale_s: float, now: float = None) -> bool:
+        """Its owner is gone: a dead process of this host, or silent for `stale_s` s."""
+        now = time.time() if now is None else now
+        return ((self.host == socket.gethostname() and not alive(self.pid))
+                or now - self.refreshed > stale_s)
+
+    def __str__(self):
+        return (f"run {self.run} ({self.study or 'no study'}, pid {self.pid} on {self.host}, "
+                f"since {self.claimed})")
+
+
 class Catalogue:
     """A catalogue folder, opened (and created unless create=False) at `directory`."""
 
@@ -151,6 +193,7 @@ class Catalogue:
                         self.db.execute(statement)
             clean_temporaries(self.dir)
         self.discarded = []         # reasons of entries found untrustworthy and dropped
+        self.taken_over = []        # stale Claims of other runs this one took over
 
     def close(self):
         self.db.close()
@@ -259,8 +302,8 @@ class Catalogue:
         """Keep one finished piece `part` (a fingerprint-like name) of the set `key`."""
         owner = fingerprint(key)
         rel = f"parts/{owner}/{part}.nc"
-        (self.dir / rel).parent.mkdir(parents=True, exist_ok=True)
-        with self._write():
+        with self._write():     # the folder too: drop_parts removes it under the lock
+            (self.dir / rel).parent.mkdir(parents=True, exist_ok=True)
             sha, size = files.write(self.dir / rel, ds, part, canonical_json(key))
             self.db.execute(
                 "INSERT OR REPLACE INTO parts (owner, part, file, sha256, bytes, seconds, "
@@ -291,18 +334,20 @@ class Catalogue:
                                (fingerprint(key),)).fetchone()[0]
 
     def drop_parts(self, key: dict):
-        """Forget the parts of the set `key` (rows, then files)."""
+        """Forget the parts of the set `key` (rows, then files), under the index's write
+        lock: another process storing a part of the same set writes its file under that
+        lock too, so none of its files is removed while it writes."""
         owner = fingerprint(key)
+        folder = self.parts_dir / owner
         with self._write():
             self.db.execute("DELETE FROM parts WHERE owner = ?", (owner,))
-        folder = self.parts_dir / owner
-        if folder.is_dir():
-            for p in folder.iterdir():
-                p.unlink(missing_ok=True)
-            try:
-                folder.rmdir()
-            except OSError:
-                pass
+            if folder.is_dir():
+                for p in folder.iterdir():
+                    p.unlink(missing_ok=True)
+                try:
+                    folder.rmdir()
+                except OSError:
+                    pass
 
     def timings(self, interface: str, mesh: str) -> list:
         """Recorded seconds of the stored sets of this interface and mesh: dicts with
@@ -344,6 +389,56 @@ class Catalogue:
             f"SELECT {', '.join(COLUMNS)}, key FROM pathsets ORDER BY created, fingerprint"
         ).fetchall()
         return [dict({c: r[c] for c in COLUMNS}, solid=solid_of(r["key"])) for r in rows]
+
+    # -- claims: which run computes a set now ---------------------------------------------
+
+    def claim(self, fingerprints, run: int, study: str, stale_s: float) -> dict:
+        """Claim the sets `fingerprints` for run `run` of this process, in one transaction:
+        {fingerprint: Claim} of the sets another live run holds; every other one is now
+        this run's.  A stale claim (Claim.stale with `stale_s`) is taken over and
+        recorded in self.taken_over."""
+        held, stamp = {}, time.time()
+        with self._write():
+            for fp in fingerprints:
+                other = self.claim_of(fp)
+                if other is not None and other.run != run:
+                    if not other.stale(stale_s, stamp):
+                        held[fp] = other
+                        continue
+                    self.taken_over.append(other)
+                self.db.execute(
+                    "INSERT OR REPLACE INTO claims (fingerprint, run, study, host, pid, "
+                    "claimed, refreshed) VALUES (?, ?, ?, ?, ?, ?, ?)",
+                    (fp, run, study, socket.gethostname(), os.getpid(), now(), stamp))
+        return held
+
+    def claim_of(self, fp: str):
+        """The Claim on the set `fp`, or None."""
+        row = self.db.execute("SELECT * FROM claims WHERE fingerprint = ?", (fp,)).fetchone()
+        return None if row is None else Claim(**dict(row))
+
+    def refresh_claims(self, run: int):
+        """A sign of life for every claim of run `run`."""
+        with self._write():
+            self.db.execute("UPDATE claims SET refreshed = ? WHERE run = ?", (time.time(), run))
+
+    def release_claims(self, run: int, fingerprints=None):
+        """Delete the claims of run `run` (only those on `fingerprints` if given)."""
+        with self._write():
+            if fingerprints is None:
+                self.db.execute("DELETE FROM claims WHERE run = ?", (run,))
+            else:
+                self.db.executemany("DELETE FROM claims WHERE run = ? AND fingerprint = ?",
+                                    [(run, fp) for fp in fingerprints])
+
+    def failure_by(self, claim: Claim):
+        """The reason the set of `claim` failed, if its owner recorded a failure since it
+        claimed the set; else None."""
+        row = self.db.execute(
+            "SELECT reason FROM pathsets WHERE fingerprint = ? AND status = 'failed' "
+            "AND host = ? AND pid = ? AND created >= ?",
+            (claim.fingerprint, claim.host, claim.pid, claim.claimed)).fetchone()
+        return None if row is None else row["reason"]
 
     # -- runs --------------------------------------------------------------------------
 

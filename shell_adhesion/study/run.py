@@ -5,12 +5,14 @@ The loading of a shell is one task and each of its relaxation paths another; wor
 compute.  This (client) process stores every finished relaxation path in the catalogue at
 once (a part of its shell's set) and the whole set when its last path arrives, so a run
 killed at any moment loses only the tasks still running; it alone writes the results.  A
-shell whose paths fail is recorded with its reason and the rest continue.
+shell whose paths fail is recorded with its reason and the rest continue.  Runs sharing a
+catalogue compute each set once: a set another run is computing is waited for
+(study.sharing).
 
 `run_study` is the one entry point (the `shell-adhesion run` command calls it).
 """
 from concurrent.futures import CancelledError
-from contextlib import contextmanager
+from contextlib import ExitStack, contextmanager
 from dataclasses import dataclass, field, replace
 import hashlib
 import importlib
@@ -41,7 +43,7 @@ from shell_adhesion.solver.path import Settings
 from shell_adhesion.solver.pathset_dataset import (from_dataset, relaxation_from_dataset,
                                                    relaxation_to_dataset, to_dataset)
 
-from . import dataset, interrupt
+from . import dataset, interrupt, sharing
 from .config import StudyError, load_study, validate
 from .keys import relaxation_part, solver_source_sha256
 from .plan import Plan, Shell, make_plan, served_key
@@ -301,6 +303,7 @@ class Tally:
     relaxations_computed: int = 0                   # relaxation paths solved and stored
     relaxations_reused: int = 0                     # relaxation paths read from parts
     loadings: int = 0                               # loading paths solved
+    shared: list = field(default_factory=list)      # fingerprints another run stored meanwhile
 
 
 def _reason(stage, exc) -> str:
@@ -314,12 +317,14 @@ def _kept(tally: Tally, cat) -> str:
 
 
 def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: Progress,
-            external: bool = False):
+            external: bool = False, claims: sharing.Claims = None):
     """Compute the path sets of `shells` on `client`, storing each relaxation path (a part)
     and each complete set in `cat` as it arrives.  Each set is fitted to its shell's
     request (solver.request.next_fit: a deeper loading, a wider even zone or paths relaxed
-    further, each bounded) before it is stored.  SchedulerLost if the scheduler of an
-    `external` client stops answering."""
+    further, each bounded) before it is stored.  `claims` (this run's, study.sharing) are
+    refreshed while it works and released set by set.  SchedulerLost if the scheduler of
+    an `external` client stops answering.  The progress counts advance from where they
+    are (a run may compute in rounds)."""
     from distributed import wait
     st = plan.study
     owner = {}                  # future -> (job, relaxation index or None)
@@ -353,9 +358,7 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
         jobs.append(job)
     waiting = list(reversed(jobs))      # opened in order as others close
     open_more()
-    n_shells = len(shells)
-    shells_done = 0
-    progress.start("loading paths")
+    progress.update("loading paths")
 
     def relax_note():
         # the paths of a set are known once its loading is in, and may grow while it is
@@ -376,17 +379,17 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
 
 
     def close(job):
-        nonlocal shells_done
         job.done = True
         job.starts, job.known = (), {}      # its states (displacement fields) are not needed
-        shells_done += 1
+        if claims is not None:
+            claims.settled(job.shell.fingerprint)
         for g, (j, _) in list(owner.items()):
             if j is job:
                 g.cancel()
                 owner.pop(g)
                 pending.discard(g)
         open_more()
-        progress.update("relaxation paths", shells_done, note=relax_note())
+        progress.update("relaxation paths", advance=1, note=relax_note())
 
     def fail(job, reason):
         tally.failed[job.shell.fingerprint] = reason
@@ -495,6 +498,8 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
     unreachable_since = None
     while pending:
         interrupt.check()           # Ctrl-C is taken here, never inside dask or a write
+        if claims is not None:
+            claims.refresh()
         try:
             done, _ = wait(list(pending), timeout=1.0, return_when="FIRST_COMPLETED")
         except TimeoutError:
@@ -517,7 +522,7 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
                 unreachable_since = time.perf_counter()
             elif time.perf_counter() - unreachable_since > LOST_AFTER_S:
                 raise SchedulerLost("the scheduler stopped answering")
-    progress.update("relaxation paths", n_shells, note=relax_note())
+    progress.update("relaxation paths", note=relax_note())
 
 
 # -- the run -----------------------------------------------------------------------------
@@ -540,6 +545,7 @@ class Outcome:
     relaxations_computed: int = 0   # relaxation paths solved by this run
     relaxations_reused: int = 0     # relaxation paths kept from an interrupted run
     dataset: object = None          # the cube as written (xarray.Dataset)
+    shared: list = field(default_factory=list)  # reused sets another run stored meanwhile
 
 
 def _held_by_index(plan: Plan, catalogue) -> int:
@@ -671,22 +677,21 @@ def _execute(plan, out_dir, output, catalogue, scheduler, client, show, workers,
                              ("energy method", len(plan.points), "points"),
                              ("cube", 1, "file")], enabled=show)
         if missing:
-            if client is not None:
-                address = getattr(client.scheduler, "address", None) or scheduler
-                try:
-                    with interrupt.deferred():
-                        compute(plan, missing, cat, client, tally, progress, external=True)
-                except (SchedulerLost, OSError, TimeoutError, CancelledError) as e:
-                    why = (f"no answer for {LOST_AFTER_S:g} s" if isinstance(e, SchedulerLost)
-                           else type(e).__name__)
-                    raise SchedulerLost(f"lost the dask scheduler {address} ({why})") from None
-            else:
-                with _local_cluster(workers) as local:
-                    if _has_bokeh():
-                        progress.say(f"dask dashboard: {local.dashboard_link}")
-                    with interrupt.deferred():
-                        compute(plan, missing, cat, client=local, tally=tally,
-                                progress=progress)
+            claims = sharing.Claims(cat, run_id, study.name,
+                                    sharing.stale_after(study.task_timeout_s))
+            try:
+                with ExitStack() as cluster:
+                    computing = _computing(plan, cat, client, scheduler, workers, cluster,
+                                           tally, progress, claims)
+                    shared = sharing.settle(missing, claims, computing, progress, tally)
+            finally:
+                claims.release()
+            for s in missing:
+                if s.fingerprint in shared:
+                    entry, ds = shared[s.fingerprint]
+                    served[served_key(s, plan)] = (entry.fingerprint, from_dataset(ds))
+                    reused.append(s.fingerprint)
+                    tally.shared.append(s.fingerprint)
         for s in missing:
             if s.fingerprint in tally.computed:
                 served[served_key(s, plan)] = (s.fingerprint, tally.computed[s.fingerprint])
@@ -718,7 +723,8 @@ def _execute(plan, out_dir, output, catalogue, scheduler, client, show, workers,
         cat.finish_run(run_id, code, len(tally.computed), len(reused), len(tally.failed), wall)
         return Outcome(code, output, plan, list(tally.computed), reused, tally.failed, counts,
                        wall, cat.dir, list(cat.discarded), products,
-                       tally.relaxations_computed, tally.relaxations_reused, _written(output))
+                       tally.relaxations_computed, tally.relaxations_reused, _written(output),
+                       shared=tally.shared)
     except KeyboardInterrupt:
         _finish_broken(cat, run_id, 130, tally, t0)
         raise Interrupted(f"interrupted: {_kept(tally, cat)}; run again to resume") from None
@@ -726,8 +732,39 @@ def _execute(plan, out_dir, output, catalogue, scheduler, client, show, workers,
         _finish_broken(cat, run_id, 1, tally, t0)
         raise SchedulerLost(f"{e}: {_kept(tally, cat)}; no cube written; run again to "
                             "resume") from None
+    except BaseException:       # any other end still gets its exit code in the runs table
+        _finish_broken(cat, run_id, 1, tally, t0)
+        raise
     finally:
         cat.close()
+
+
+def _computing(plan, cat, client, scheduler, workers, cluster: ExitStack, tally, progress,
+               claims):
+    """compute(shells) on the external `client`, else on a local cluster started the first
+    time it is needed (entered in `cluster`, so it lasts while the run computes or waits)."""
+    local = []
+
+    def computing(shells):
+        if client is not None:
+            address = getattr(client.scheduler, "address", None) or scheduler
+            try:
+                with interrupt.deferred():
+                    compute(plan, shells, cat, client, tally, progress, external=True,
+                            claims=claims)
+            except (SchedulerLost, OSError, TimeoutError, CancelledError) as e:
+                why = (f"no answer for {LOST_AFTER_S:g} s" if isinstance(e, SchedulerLost)
+                       else type(e).__name__)
+                raise SchedulerLost(f"lost the dask scheduler {address} ({why})") from None
+            return
+        if not local:
+            local.append(cluster.enter_context(_local_cluster(workers)))
+            if _has_bokeh():
+                progress.say(f"dask dashboard: {local[0].dashboard_link}")
+        with interrupt.deferred():
+            compute(plan, shells, cat, client=local[0], tally=tally, progress=progress,
+                    claims=claims)
+    return computing
 
 
 def _inputs(plan, cat):
@@ -843,8 +880,9 @@ def summary(outcome: Outcome, ds=None) -> str:
         f"requested points: {len(p.points)}; interface {p.study.interface}, mesh {p.study.mesh}",
         *_cavity_lines(p),
         f"FE path sets: {len(p.all_shells)} needed, {len(outcome.computed)} computed, "
-        f"{len(outcome.reused)} reused, {len(outcome.failed)} failed "
-        f"(catalogue {outcome.catalogue})",
+        f"{len(outcome.reused)} reused"
+        + (f" ({len(outcome.shared)} stored by another run meanwhile)" if outcome.shared else "")
+        + f", {len(outcome.failed)} failed (catalogue {outcome.catalogue})",
         f"points: {c['ok']} ok, {c['out of range']} out of range, {c['solver failed']} "
         f"solver failed, {c['not requested']} not requested",
     ]

@@ -286,9 +286,10 @@ def _pm(group, name, unit=" mm", asked=True):
 
 
 def _a0(po, asked=True):
-    """a0 with its error bar, or why it is undefined."""
+    """a0 with its error bar, or undefined (why, and the depth that answers it: a note
+    printed below, study.a0_note)."""
     if po["a0_mm"] is None:
-        return "undefined (the equilibrium curve ends before P = 0)"
+        return "undefined (below)"
     return _pm(po, "a0_mm", asked=asked)
 
 
@@ -335,7 +336,7 @@ def _print_case(out):
               f"delta* = {pm(fl, 'delta_mm')}, a* = {pm(fl, 'a_mm')}; {grips}; "
               f"a0 = {_a0(po, asked)}; eta = {po['eta']:.3g}"
               + (f" +- {po['eta_error']:.2g}" if po.get("eta_error") is not None else ""))
-        for note in (po.get("reason"), po.get("error_note")):
+        for note in (po.get("reason"), po.get("error_note"), po.get("a0_note")):
             if note:
                 print(f"  {note}")
     p = out["provenance"]

@@ -28,6 +28,7 @@ import argparse
 import difflib
 import os
 from pathlib import Path
+import re
 import sys
 import time
 
@@ -56,7 +57,8 @@ MATERIAL_FLAGS = (("C01", "C01_MPa", "MPa"), ("C20", "C20_MPa", "MPa"), ("C30", 
 
 
 class _Parser(argparse.ArgumentParser):
-    """argparse with one-line errors, and a flag's nearest spelling for a mistyped one."""
+    """argparse with one-line errors, and for a mistyped or spelt-out flag the one meant
+    (`--gama`: --gamma; `--thickness`: --t, whose help names the thickness)."""
 
     def error(self, message):
         self.exit(2, f"{self.prog}: error: {message}\n")
@@ -78,9 +80,31 @@ class _Parser(argparse.ArgumentParser):
             name = arg.split("=", 1)[0]
             if not name.startswith("--") or any(f.startswith(name) for f in flags):
                 continue
-            close = difflib.get_close_matches(name, flags, n=1)
+            close = (difflib.get_close_matches(name, flags, n=1, cutoff=0.75)
+                     or _by_meaning(name, self._actions)
+                     or difflib.get_close_matches(name, flags, n=1))
             if close:
-                self.error(f"{name}: not an option; did you mean {close[0]}?")
+                self.error(f"{name}: not an option; did you mean {' or '.join(close)}?")
+
+
+HELP_WORD = re.compile(r"[a-z]{4,}")
+COMMON_WORDS = {"with", "from", "this", "that", "each", "default", "give", "than", "what",
+                "when", "into", "only", "file", "show", "help", "message", "exit", "number"}
+
+
+def _by_meaning(name: str, actions) -> list:
+    """The long flags whose help names what `name` spells out (``--thickness``: --t, whose
+    help says "shell thickness t"): at most three, those naming most of its words first."""
+    asked = {w for w in HELP_WORD.findall(name.lower()) if w not in COMMON_WORDS}
+    scored = []
+    for order, action in enumerate(actions):
+        text = action.help if action.help not in (None, argparse.SUPPRESS) else ""
+        words = set(HELP_WORD.findall(text.lower())) - COMMON_WORDS
+        hits = sum(any(a.startswith(w) or w.startswith(a) for w in words) for a in asked)
+        long = [f for f in action.option_strings if f.startswith("--")]
+        if hits and long:
+            scored.append((-hits, order, long[0]))
+    return [flag for _, _, flag in sorted(scored)[:3]]
 
 
 class _OneDash(argparse.Action):
@@ -262,9 +286,10 @@ def _pm(group, name, unit=" mm", asked=True):
 
 
 def _a0(po, asked=True):
-    """a0 with its error bar, or why it is undefined."""
+    """a0 with its error bar, or undefined (why, and the depth that answers it: a note
+    printed below, study.a0_note)."""
     if po["a0_mm"] is None:
-        return "undefined (the equilibrium curve ends before P = 0)"
+        return "undefined (below)"
     return _pm(po, "a0_mm", asked=asked)
 
 
@@ -311,7 +336,7 @@ def _print_case(out):
               f"delta* = {pm(fl, 'delta_mm')}, a* = {pm(fl, 'a_mm')}; {grips}; "
               f"a0 = {_a0(po, asked)}; eta = {po['eta']:.3g}"
               + (f" +- {po['eta_error']:.2g}" if po.get("eta_error") is not None else ""))
-        for note in (po.get("reason"), po.get("error_note")):
+        for note in (po.get("reason"), po.get("error_note"), po.get("a0_note")):
             if note:
                 print(f"  {note}")
     p = out["provenance"]

@@ -178,3 +178,17 @@ def test_study_attributes_survive_netcdf(study, tmp_path):
     xr.Dataset(attrs=attrs).to_netcdf(tmp_path / "s.nc")
     with xr.open_dataset(tmp_path / "s.nc") as back:
         assert cube.study_of(back) == {k: v for k, v in study.items() if v != {}}
+
+
+def test_the_cube_names_the_mesh_zone_each_shell_used(ds):
+    """The base shell's paths also serve C10 = 0.2 MPa (larger gamma / (C10 R)): its mesh
+    zone, in the cube with its units, is the one fitted to them, not a single case's."""
+    from shell_adhesion import solve_case
+    zone = ds["mesh_even_arc_mm"]
+    assert zone.attrs["units"] == "mm" and zone.dims == ("t_over_R", "h_over_R")
+    served = (ds["pathset_fingerprint"] != "").values
+    assert np.isfinite(zone.values[served]).all() and served.any()
+    base = dict(t_over_R=0.15, h_over_R=1.0)
+    case = solve_case(20, 3, 20, 0.3, [30], mesh="coarse", progress=False, error_bars=False)
+    own = case.provenance["fit"]["even_arc_mm"]
+    assert float(zone.sel(base)) > own

@@ -112,6 +112,13 @@ def test_fig6b_pull_off_with_jkr_and_eta(ds):
     np.testing.assert_allclose(gamma_ax.get_lines()[1].get_ydata(), 1.5 * np.pi * 20.0 * g * 1e-3)
 
 
+def test_fig6b_panels_name_their_swept_factor_on_the_x_axis(ds):
+    """Each panel's x axis and title name the factor it sweeps (not a legend's text)."""
+    for ax, (dim, label) in zip(figures.fig_pull_off(ds), figures.SWEEPS):
+        assert ax.get_xlabel() == label, dim
+        assert label in ax.get_title(), dim
+
+
 def test_von_mises_map(ds):
     fig = figures.figure_of(figures.fig_von_mises(ds))
     maps = [ax for ax in fig.axes if any(isinstance(c, TriMesh) for c in ax.collections)]

@@ -154,7 +154,7 @@ def test_design_puts_the_thickness_on_its_bound_and_the_case_agrees():
      "--t: 6 2: MIN must be <= MAX"),
     (["design", "--C10", "0.3", "--gamma", "30", "--R", "20", "--t", "30", "40", "--map",
       "coarse"],
-     "no shell inside the bounds lies on the map"),
+     "--t: 30 to 40 mm is outside the map: t from 1 to 8 mm for R 20 mm"),
     (["map", "build", "study.yaml", "--out", "map.txt"], "--out: map.txt: the map file must end"),
 ])
 def test_bad_input_is_one_line_and_exit_2(args, message, capsys, tmp_path, monkeypatch):
@@ -165,18 +165,26 @@ def test_bad_input_is_one_line_and_exit_2(args, message, capsys, tmp_path, monke
     assert list(tmp_path.iterdir()) == []
 
 
-def test_a_bad_map_study_is_one_line_and_exit_2(capsys, tmp_path, monkeypatch):
-    """`map build` checks its study as `run` does: one line naming the field, exit 2,
-    nothing created (no catalogue, no map, no study folder)."""
+@pytest.mark.parametrize("C10, grid, message", [
+    (-1, "t_over_R: [0.1], h_over_R: [1.0], gamma_J_m2: [10]", "base.C10_MPa: -1 must be > 0"),
+    # a map interpolates: one value on an axis is refused before any FE work
+    (0.3, "t_over_R: [0.1, 0.2], h_over_R: [1.0], gamma_J_m2: [10, 20]",
+     "grid.h_over_R: 1: a map interpolates along t_over_R, h_over_R and gamma_J_m2: give "
+     "each two or more values in the grid"),
+])
+def test_a_bad_map_study_is_one_line_and_exit_2(C10, grid, message, capsys, tmp_path,
+                                                monkeypatch, forbid_fe):
+    """`map build` checks its study as `run` does, and that it spans a map: one line
+    naming the field, exit 2, nothing created (no catalogue, no map, no study folder)."""
     study = tmp_path / "map.yaml"
-    study.write_text("name: m\nR_mm: 20\nbase: {C10_MPa: -1}\n"
-                     "grid: {t_over_R: [0.1], h_over_R: [1.0], gamma_J_m2: [10]}\n")
+    study.write_text(f"name: m\nR_mm: 20\nbase: {{C10_MPa: {C10}}}\nmesh: coarse\n"
+                     f"grid: {{{grid}}}\n")
     work = tmp_path / "work"
     work.mkdir()
     monkeypatch.chdir(work)
     assert main(["map", "build", str(study), "--out", "m.nc", "--catalogue", "cat"]) == 2
     err = capsys.readouterr().err.strip()
-    assert err == f"shell-adhesion: error: {study}: base.C10_MPa: -1 must be > 0", err
+    assert err == f"shell-adhesion: error: {study}: {message}", err
     assert list(work.iterdir()) == []
 
 

@@ -29,6 +29,21 @@ def test_notebook_snippet_runs_from_another_folder(tmp_path):
     assert run.returncode == 0, run.stderr[-2000:]
 
 
+def test_notebook_snippets_cube_part_runs_from_another_folder(tmp_path, small_study):
+    """The snippet's cube part builds the cube it opens: here the small coarse study (its
+    paths already in the catalogue) in place of the paper's, from an empty folder."""
+    code = re.search(r"```python\n(.*?)```", README, re.S).group(1)
+    cube_part = "import shell_adhesion as sa\ncube = " + code.split("\ncube = ", 1)[1]
+    study = small_study.parent.parent / "small.yaml"
+    assert "sa.examples.paper_study()" in cube_part
+    cube_part = cube_part.replace("sa.examples.paper_study()", repr(str(study)))
+    env = dict(ENV, MPLBACKEND="Agg", SHELL_ADHESION_CATALOGUE=str(study.parent / "cat"))
+    run = subprocess.run([sys.executable, "-c", cube_part], cwd=tmp_path, env=env,
+                         capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stderr[-2000:]
+    assert (tmp_path / "results" / "small.nc").is_file()
+
+
 @pytest.mark.parametrize("case,row_start", [
     (("default", "no_slip", "neo_hooke"), "default mesh, no_slip: "),
     (("default", "frictionless", "neo_hooke"), "; frictionless: "),

@@ -60,9 +60,7 @@ def pull_off_table(ds: xr.Dataset) -> Table:
 def fig_pull_off_lambda(ds: xr.Dataset):
     """P* against lambda for each (C10, t/R, h/R, gamma) with two or more answered
     lambdas; None when there is none."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure
     lines = []
     for C10 in ds.C10.values:
         for t in ds.t_over_R.values:
@@ -76,7 +74,8 @@ def fig_pull_off_lambda(ds: xr.Dataset):
                                       s.P_star_error.values[ok]))
     if not lines:
         return None
-    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    fig = Figure(figsize=(6.4, 4.4))
+    ax = fig.subplots()
     for label, lam, P, err in lines:
         ax.errorbar(lam, P, yerr=np.nan_to_num(err), marker="o", capsize=3, label=label)
     ax.set_xscale("log")
@@ -86,10 +85,9 @@ def fig_pull_off_lambda(ds: xr.Dataset):
 
 def fig_paths(ds: xr.Dataset):
     """The traced P(delta) of the first MOST_PATHS points, each pull-off marked."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    from matplotlib.figure import Figure
+    fig = Figure(figsize=(6.4, 4.4))
+    ax = fig.subplots()
     for i, at in list(_points(ds))[:MOST_PATHS]:
         n = int(ds.states.values[i])
         line, = ax.plot(ds.curve_delta.values[i, :n], ds.curve_P.values[i, :n], lw=0.9,
@@ -115,7 +113,6 @@ def _finished(fig, ax, xlabel, ylabel, title):
 
 def write_cohesive_products(results_nc) -> Products:
     """The table (csv, md, tex) and the figures of the cohesive cube at `results_nc`."""
-    import matplotlib.pyplot as plt
     path = Path(results_nc)
     with xr.open_dataset(path) as ds:
         ds = ds.load()
@@ -133,6 +130,5 @@ def write_cohesive_products(results_nc) -> Products:
             p.skipped[name] = "lambda takes one value per shell"
             continue
         _save(fig, figs / f"{name}.png", 150)
-        plt.close(fig)
         p.figures.append(figs / f"{name}.png")
     return p

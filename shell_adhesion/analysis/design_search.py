@@ -9,7 +9,8 @@ user's bounds (mm) and maximises one objective:
   the contact radius a* (the least compression after which P* is reached), dimensionless;
 - ``per_volume``: ``|P*|`` / V in N/mm^3, V the volume of the cap's material.
 
-A dense grid of the interpolant first, then Nelder-Mead from its best point (scipy).
+A dense grid of the interpolant over the bounds met with the map (`design_box`; a fixed
+t or h is one grid line), then Nelder-Mead from its best point (scipy), in (ln t, h).
 Reads only the map (no FE); `shell_adhesion.study.design` confirms with one FE case.
 """
 from dataclasses import dataclass, field
@@ -18,6 +19,7 @@ import math
 import numpy as np
 from scipy.optimize import minimize
 
+from .design_box import Box, R_of_h, search_box
 from .pull_off_map import MapError, PullOffMap
 
 OBJECTIVES = {"pull_off": "|P*| [N]", "per_preload": "|P*| / preload [1]",
@@ -35,13 +37,6 @@ def cap_volume_mm3(R_mm: float, t_mm: float, h_mm: float) -> float:
     return cap(R_mm, h_mm) - cap(R_mm - t_mm, h_mm - t_mm)
 
 
-def R_of(h_over_R: float, R_mm=None, b_mm=None) -> float:
-    """The radius of curvature [mm]: R itself, or from the rim radius b = R sqrt(y (2 - y))."""
-    if R_mm is not None:
-        return float(R_mm)
-    return float(b_mm) / math.sqrt(h_over_R * (2 - h_over_R))
-
-
 @dataclass(frozen=True)
 class Design:
     """The best shell found on the map and what the map says of it (units in the names)."""
@@ -55,14 +50,13 @@ class Design:
     evaluated: int = 0                  # interpolant evaluations
 
 
-def _objective(pm: PullOffMap, objective, C10, gamma, R_mm, b_mm, t_range, h_range):
-    """f(ln t/R, h/R) to minimise (-objective), or None outside the bounds / the map."""
+def _objective(pm: PullOffMap, objective, C10, gamma, R_mm, b_mm, box: Box):
+    """f(ln t, h) to minimise (-objective), t and h in mm held inside `box`; None off the
+    map."""
     def value(z):
-        x, y = math.exp(z[0]), z[1]
-        R = R_of(y, R_mm, b_mm)
-        t, h = x * R, y * R
-        if not (t_range[0] <= t <= t_range[1] and h_range[0] <= h <= h_range[1]):
-            return None
+        t = min(max(math.exp(z[0]), box.t_mm[0]), box.t_mm[1])
+        h = min(max(z[1], box.h_mm[0]), box.h_mm[1])
+        R = R_of_h(h, R_mm, b_mm)
         try:
             out = pm.shell(R, t, h, C10, gamma)
         except MapError:
@@ -77,34 +71,50 @@ def _objective(pm: PullOffMap, objective, C10, gamma, R_mm, b_mm, t_range, h_ran
     return value
 
 
+def grid_size(box: Box) -> int:
+    """How many map evaluations the search's first grid makes over `box`."""
+    return _points(box.t_mm) * _points(box.h_mm)
+
+
+def _points(pair) -> int:
+    return 1 if pair[0] == pair[1] else GRID_POINTS
+
+
 def search(pm: PullOffMap, C10_MPa: float, gamma_J_m2: float, objective="pull_off", *,
-           R_mm=None, b_mm=None, t_mm=(0.0, math.inf), h_mm=(0.0, math.inf)) -> Design:
-    """The (t, h) inside the bounds and the map that maximises the objective; ValueError if
-    no shell inside the bounds lies on the map."""
+           R_mm=None, b_mm=None, t_mm=(0.0, math.inf), h_mm=(0.0, math.inf),
+           on_grid=None) -> Design:
+    """The (t, h) inside the bounds and the map that maximises the objective.
+
+    A bound (or gamma) that leaves no shell on the map raises `OffMap` naming it with the
+    map's range; equal bounds fix t or h.  ``on_grid(done, total)`` is called as the first
+    grid is evaluated (progress)."""
     if objective not in OBJECTIVES:
         raise ValueError(f"objective: {objective!r} must be one of {', '.join(OBJECTIVES)}")
     if (R_mm is None) == (b_mm is None):
         raise ValueError("give the size as R_mm or as b_mm (the rim radius), not both")
-    f = _objective(pm, objective, C10_MPa, gamma_J_m2, R_mm, b_mm, t_mm, h_mm)
-    (tlo, thi), (hlo, hhi) = pm.bounds["t_over_R"], pm.bounds["h_over_R"]
-    box = [(math.log(tlo), math.log(thi)), (hlo, hhi)]
-    count = 0
-    best = None
-    for z0 in np.linspace(*box[0], GRID_POINTS):
-        for z1 in np.linspace(*box[1], GRID_POINTS):
+    box = search_box(pm.bounds, C10_MPa, gamma_J_m2, R_mm, b_mm, t_mm, h_mm)
+    f = _objective(pm, objective, C10_MPa, gamma_J_m2, R_mm, b_mm, box)
+    bounds = [(math.log(box.t_mm[0]), math.log(box.t_mm[1])), box.h_mm]
+    axes = [np.linspace(lo, hi, _points((lo, hi))) for lo, hi in bounds]
+    total, count, best = len(axes[0]) * len(axes[1]), 0, None
+    for z0 in axes[0]:
+        for z1 in axes[1]:
             got = f((z0, z1))
             count += 1
             if got is not None and got[0] is not None and (best is None or got[0] > best[1][0]):
                 best = ((z0, z1), got)
+            if on_grid is not None:
+                on_grid(count, total)
     if best is None:
-        raise MapError("no shell inside the bounds lies on the map (t/R "
-                         f"{tlo:.3g}-{thi:.3g}, h/R {hlo:.3g}-{hhi:.3g}, gamma/(C10 R) "
-                         f"{pm.bounds['gamma_hat'][0]:.3g}-{pm.bounds['gamma_hat'][1]:.3g})")
+        raise MapError(f"no shell with t {box.t_mm[0]:.4g} to {box.t_mm[1]:.4g} mm and h "
+                       f"{box.h_mm[0]:.4g} to {box.h_mm[1]:.4g} mm lies on the map (t/R "
+                       f"{pm.bounds['t_over_R'][0]:.3g}-{pm.bounds['t_over_R'][1]:.3g}, h/R "
+                       f"{pm.bounds['h_over_R'][0]:.3g}-{pm.bounds['h_over_R'][1]:.3g})")
 
     def loss(z):
         got = f(z)
         return math.inf if got is None or got[0] is None else -got[0]
-    res = minimize(loss, np.array(best[0]), method="Nelder-Mead", bounds=box,
+    res = minimize(loss, np.array(best[0]), method="Nelder-Mead", bounds=bounds,
                    options=dict(maxiter=MAX_ITERATIONS, xatol=1e-4, fatol=1e-10))
     count += res.nfev
     z = res.x if np.isfinite(res.fun) and -res.fun >= best[1][0] else np.array(best[0])

@@ -487,13 +487,13 @@ def fig_pull_off(ds, axes=None):
         q = [dict(p, **{dim: float(v)}) for v in x]
         jkr = [-jkr_P_star_N(R, c["gamma"]) for c in q]
         law = [fit.eta * shell_law_scale_N(R, c["t_over_R"] * R, c["C10"], c["gamma"]) for c in q]
-        label = "|P*| (this study)" if name is None else f"|P*|, {name} (base)"
+        series = "|P*| (this study)" if name is None else f"|P*|, {name} (base)"
         if "P_star_error" in ds:     # the discretisation error bar (solver.error_bars)
             err = along(ds, "P_star_error", dim).reindex({dim: P[dim]}).values
             ax.errorbar(x, -P.values, yerr=err, fmt="o-", color=ours, capsize=3,
-                        label=label + " +- error bar")
+                        label=series + " +- error bar")
         else:
-            ax.plot(x, -P.values, "o-", color=ours, label=label)
+            ax.plot(x, -P.values, "o-", color=ours, label=series)
         ax.plot(x, jkr, "--", marker="x", color=jkr_c, label="JKR 1.5 pi R gamma")
         ax.plot(x, law, ":", marker="+", color=law_c,
                 label=f"linear-shell law eq. 3, eta = {fit.eta:.2f} (fit over {fit.n} cases)")

@@ -10,9 +10,7 @@ TICKS = (0.02, 0.05, 0.1, 0.2, 0.4, 1.0)
 
 def draw_map(pm, gamma_hat, path):
     """Write the figure of map `pm` (analysis.pull_off_map.PullOffMap) at gamma_hat."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure
     from matplotlib.ticker import FixedLocator, FormatStrFormatter, NullFormatter
     from .pull_off_map import MapError
 
@@ -28,7 +26,8 @@ def draw_map(pm, gamma_hat, path):
             except MapError:
                 continue
             P[j, i], err[j, i] = ans.value, 100 * ans.error / abs(ans.value)
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4), constrained_layout=True)
+    fig = Figure(figsize=(10, 4), layout="constrained")
+    axes = fig.subplots(1, 2)
     panels = ((P, "viridis", r"$P^*/(C_{10}R^2)$"), (err, "magma_r", "stated error of $P^*$ [%]"))
     for ax, (z, cmap, label) in zip(axes, panels):
         im = ax.pcolormesh(t, h, z, cmap=cmap, shading="auto")
@@ -45,4 +44,3 @@ def draw_map(pm, gamma_hat, path):
                       f"({pm.ds.attrs.get('mesh', '')} mesh)")
     axes[1].set_title("its error bar (white: 2 %); dots: FE shells")
     fig.savefig(path, dpi=120)
-    plt.close(fig)

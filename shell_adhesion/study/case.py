@@ -9,7 +9,6 @@ xarray Dataset (`study.case_report`); the input is checked by `study.case_input`
 """
 from dataclasses import dataclass, field
 import json
-import sys
 import time
 
 from shell_adhesion.errors import InputError, MaterialLimitError
@@ -26,6 +25,9 @@ from shell_adhesion.solver.scaling import gamma_hat
 
 from . import case_report
 from .case_input import CaseInput, case_input
+from .progress import bar as progress_bar
+
+COMPANIONS = 2      # coarser meshes of the family solved for a case's error bars
 
 
 @dataclass(frozen=True, eq=False)
@@ -173,12 +175,13 @@ def _request(inp: CaseInput, gamma_max) -> Request:
                            else inp.delta_max_mm / inp.R_mm)
 
 
-def _companions(inp: CaseInput, gamma_max: float, g_hats):
-    """The shell on the next two coarser meshes of the family, each fitted to the same
-    request, with its pull-off per gamma (None where its paths do not give one)."""
+def _companions(inp: CaseInput, gamma_max: float, g_hats, on_mesh=None):
+    """The shell on the next COMPANIONS coarser meshes of the family, each fitted to the
+    same request, with its pull-off per gamma (None where its paths do not give one);
+    ``on_mesh()`` after each (progress)."""
     out = []
     mesh = inp.mesh
-    for _ in range(2):
+    for _ in range(COMPANIONS):
         mesh = coarser_mesh(mesh)
         ps, _, _ = solve_request(inp.t_mm / inp.R_mm, inp.h_mm / inp.R_mm,
                                  _request(inp, gamma_max if g_hats else None), gamma_max,
@@ -189,20 +192,19 @@ def _companions(inp: CaseInput, gamma_max: float, g_hats):
                               for g in g_hats),
                     {g: f"the {mesh} mesh: {got[g]}" for g in g_hats
                      if isinstance(got[g], Exception)}))
+        if on_mesh is not None:
+            on_mesh()
     return out
 
 
 def _solve(inp: CaseInput, progress: bool, error_bars: bool = True) -> CaseResult:
-    from tqdm import tqdm
-
     R, C10 = inp.R_mm, inp.C10_MPa
     g_hats = [gamma_hat(g, C10, R) for g in inp.gamma_J_m2]
     gamma_max = gamma_bucket(max(g_hats)) if g_hats else GAMMA_MAX
     request = _request(inp, gamma_max if g_hats else None)
     depth = initial_fit(Cap(inp.t_mm / R, inp.h_mm / R), request).delta_max * R
     t0 = time.perf_counter()
-    with tqdm(total=round(depth, 6), unit="mm", desc="loading", file=sys.stderr,
-              disable=None if progress else True, leave=False) as bar:
+    with progress_bar(round(depth, 6), "loading", "mm", progress) as bar:
         stage = ["loading"]
 
         def on_state(delta):
@@ -233,17 +235,21 @@ def _solve(inp: CaseInput, progress: bool, error_bars: bool = True) -> CaseResul
         except MaterialLimitError as e:     # the same reason, in mm
             e.args = (e.text(R, "mm", "delta_max_mm"),)
             raise
-    t_fe = time.perf_counter()
-    adhesion, refused = [], []
-    if g_hats:
-        got = answers(ps, g_hats)
-        for g, gh in zip(inp.gamma_J_m2, g_hats):
-            if isinstance(got[gh], Exception):
-                refused.append((g, str(got[gh])))
-            else:
-                adhesion.append((g, *got[gh]))
-    t_energy = time.perf_counter()
-    companions = _companions(inp, gamma_max, g_hats) if error_bars else []
+        t_fe = time.perf_counter()
+        adhesion, refused = [], []
+        if g_hats:
+            got = answers(ps, g_hats)
+            for g, gh in zip(inp.gamma_J_m2, g_hats):
+                if isinstance(got[gh], Exception):
+                    refused.append((g, str(got[gh])))
+                else:
+                    adhesion.append((g, *got[gh]))
+        t_energy = time.perf_counter()
+        if error_bars:
+            bar.set_description("error bars: coarser meshes")
+            bar.unit = "mesh"
+            bar.reset(COMPANIONS)
+        companions = _companions(inp, gamma_max, g_hats, bar.update) if error_bars else []
     t3 = time.perf_counter()
     answered = [gh for g, gh in zip(inp.gamma_J_m2, g_hats) if g in {a[0] for a in adhesion}]
     pick = lambda pos: tuple(pos[g_hats.index(gh)] for gh in answered)

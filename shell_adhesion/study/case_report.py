@@ -14,6 +14,7 @@ from shell_adhesion.solver.error_bars import (curve_error, error_bar, observed_o
                                                refines_through_thickness)
 from shell_adhesion.solver.scaling import energy_mJ, force_N, length_mm
 
+from .a0_note import a0_note
 from .case_input import cavity_kPa, material_MPa
 
 def _attrs(units, long_name):
@@ -111,9 +112,12 @@ def as_dict(result, curves: bool = False) -> dict:
     if adhesion:
         out["pull_off"] = [_pull_off_dict(g, v) for g, v, _ in adhesion]
         missing = (result.provenance.get("error_bars") or {}).get("not_given", {})
-        for po in out["pull_off"]:
+        for po, (_, _, curve) in zip(out["pull_off"], adhesion):
             if f"{po['gamma_J_m2']:g}" in missing:     # the error bar says why it is not there
                 po["error_note"] = missing[f"{po['gamma_J_m2']:g}"]
+            if po["status"] == "ok" and po["a0_mm"] is None and len(curve["a"]):
+                po["a0_note"] = a0_note(result.input, result.provenance, float(curve["a"][-1]),
+                                        float(curve["P"][-1]))
     out["provenance"] = result.provenance
     return out
 

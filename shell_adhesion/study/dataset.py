@@ -60,6 +60,7 @@ from shell_adhesion.solver.cavity import P_ATM_KPA
 from shell_adhesion.solver.error_bars import (curve_error, error_bar, observed_order,
                                                refines_through_thickness)
 from shell_adhesion.solver.material import NEO_HOOKE
+from shell_adhesion.solver.mesh import mesh_spec
 from shell_adhesion.solver.scaling import energy_mJ, force_N, gamma_hat, length_mm
 from shell_adhesion.theory import eta_of
 
@@ -406,10 +407,12 @@ def _build(plan: Plan, served: dict, failed: dict, history: str, material) -> xr
     shells = (len(ax["t_over_R"]), len(ax["h_over_R"]))
     fps = np.full(shells, "", dtype=object)
     gmax = np.full(shells, np.nan)
+    even = np.full(shells, np.nan)
     load = {k: np.full(shells + (n_load,), np.nan) for k in ("delta", "a", "P", "U")}
     for (t, h), (fp, ps) in served.items():
         j = (index["t_over_R"][t], index["h_over_R"][h])
         fps[j], gmax[j] = fp, ps.gamma_max
+        even[j] = mesh_spec(ps.mesh, ps.uniform).uniform
         n = len(ps.loading_delta)
         for k in load:
             load[k][j][:n] = getattr(ps, f"loading_{k}")
@@ -417,6 +420,12 @@ def _build(plan: Plan, served: dict, failed: dict, history: str, material) -> xr
         "1", "catalogue fingerprint of the FE path set used (empty: none)"))
     data["gamma_max_hat"] = (("t_over_R", "h_over_R"), gmax, _attrs(
         "1", "largest gamma / (C10 R) the shell's FE paths serve"))
+    data["mesh_even_arc_mm"] = (("t_over_R", "h_over_R"), length_mm(even, R), _attrs(
+        "mm", "arc length from the apex meshed evenly (the mesh zone of the shell's paths)",
+        comment="fitted to every point the shell's paths serve (up to gamma_max_hat, over "
+                "all C10); solve_case of the same shell fits its mesh to its own gammas (its "
+                "provenance: fit.even_arc_mm), so the two answers come from different meshes "
+                "and can differ"))
     data.update(_checks(served, index, shells, C10s, R))
     data["pull_off_inverted"] = (DIMS, inverted, _attrs(
         "1", "pull-off point bridges or follows a contact-zone inversion (1 yes, 0 no, "

@@ -8,8 +8,10 @@ interpolation and by their meshes (each shell is meshed for itself).
 """
 from dataclasses import asdict, dataclass
 import math
+import sys
 
 from shell_adhesion.analysis.design_search import OBJECTIVES, Design, search
+from shell_adhesion.study.progress import bar as progress_bar
 from shell_adhesion.study.pull_off_map import DEFAULT_MAP, pull_off_map
 
 NAMES = ("P_star", "delta_star", "a_star")
@@ -55,6 +57,12 @@ class DesignResult:
         return "\n".join(lines)
 
 
+def _say(progress, text):
+    """A stage's line on stderr (a terminal, a notebook or a log) when `progress`."""
+    if progress:
+        print(text, file=sys.stderr, flush=True)
+
+
 def _num(v):
     return math.nan if v is None else v
 
@@ -82,16 +90,28 @@ def design(C10_MPa, gamma_J_m2, objective="pull_off", *, R_mm=None, b_mm=None,
         The shipped map (``coarse``, the default) or a map file built by `map build`.
     confirm : bool
         Solve the optimum with one FE case on the map's mesh and interface.
+    progress : bool
+        Show what runs on stderr: a bar (done/total, ETA) of the map search and of the FE
+        case's stages on a terminal or in a notebook, and the FE case's line.
     """
     pm = pull_off_map(map)
-    found = search(pm, C10_MPa, gamma_J_m2, objective, R_mm=R_mm, b_mm=b_mm,
-                   t_mm=tuple(t_mm), h_mm=tuple(h_mm))
     material = dict(C10_MPa=C10_MPa, gamma_J_m2=gamma_J_m2, model="neo-hookean",
                     interface=pm.ds.attrs.get("interface", "no_slip"),
                     mesh=pm.ds.attrs.get("mesh", "default"))
+    stages = 2 if confirm else 1
+    with progress_bar(None, f"design 1/{stages}: map search", "shell", progress) as bar:
+        def on_grid(done, total):
+            if bar.total is None:
+                bar.reset(total)
+            bar.update(done - bar.n)
+        found = search(pm, C10_MPa, gamma_J_m2, objective, R_mm=R_mm, b_mm=b_mm,
+                       t_mm=tuple(t_mm), h_mm=tuple(h_mm), on_grid=on_grid)
     if not confirm:
         return DesignResult(found, material)
     from shell_adhesion.study.case import solve_case
+    _say(progress, f"design 2/2: one FE case (R {found.R_mm:.4g} mm, t {found.t_mm:.4g} mm, "
+                   f"h {found.h_mm:.4g} mm) on the {material['mesh']} mesh, then "
+                   "two coarser meshes for its error bars")
     case = solve_case(found.R_mm, found.t_mm, found.h_mm, C10_MPa, [gamma_J_m2],
                       interface=material["interface"], mesh=material["mesh"],
                       progress=progress).to_dict()["pull_off"][0]

@@ -13,6 +13,7 @@ import argparse
 import json
 import math
 
+from shell_adhesion.analysis.design_box import OffMap
 from shell_adhesion.analysis.design_search import OBJECTIVES
 from shell_adhesion.analysis.pull_off_map import MapError
 from shell_adhesion.errors import InputError
@@ -21,6 +22,8 @@ from shell_adhesion.study.pull_off_map import DEFAULT_MAP, SHIPPED, pull_off_map
 NAMES = (("P_star_N", "P*"), ("delta_star_mm", "delta*"), ("a_star_mm", "a*"),
          ("P_dagger_N", "P_dagger"), ("delta_dagger_mm", "delta_dagger"),
          ("a_dagger_mm", "a_dagger"), ("preload_N", "preload at a*"))
+
+FLAGS = {"t_mm": "--t", "h_mm": "--h", "gamma_J_m2": "--gamma"}     # design's arguments
 
 
 def add_parsers(sub, one_dash):
@@ -202,6 +205,8 @@ def _design(ns):
     try:
         result = design(C10, gamma, ns.objective, R_mm=R, b_mm=b, t_mm=t_mm, h_mm=h_mm,
                         map=ns.map, confirm=not ns.no_confirm, progress=not ns.json)
+    except OffMap as e:
+        raise InputError(f"{FLAGS[e.argument]}: {e.detail}") from None
     except MapError as e:
         raise InputError(str(e)) from None
     print(json.dumps(result.to_dict(), indent=1) if ns.json else result.to_text())

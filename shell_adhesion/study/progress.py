@@ -1,4 +1,5 @@
-"""Progress of a study run: one line per stage with done/total and elapsed time.
+"""Progress of a study run: one line per stage with done/total and elapsed time; `bar`, the
+one-line bar of a case and a design (a terminal or a notebook).
 
 The totals are fixed when the plan is made; a count never runs past its total.  The
 relaxation stage also counts paths: done/total, the total an estimate (~: study.cost
@@ -106,3 +107,22 @@ class Progress:
             if self.tty:
                 self._show(next(iter(self.stages.values())), time.perf_counter())
             self.stream.flush()
+
+
+def shown(stream=None) -> bool:
+    """Whether a progress bar on `stream` (stderr by default) is seen live: a terminal, or a
+    Jupyter kernel (whose cell output redraws a carriage-returned line)."""
+    stream = sys.stderr if stream is None else stream
+    if hasattr(stream, "isatty") and stream.isatty():
+        return True
+    shell = sys.modules.get("IPython")
+    ip = shell.get_ipython() if shell is not None and hasattr(shell, "get_ipython") else None
+    return ip is not None and "IPKernelApp" in getattr(ip, "config", {})
+
+
+def bar(total, desc: str, unit: str, enabled: bool = True):
+    """A tqdm bar on stderr (done/total, rate, ETA) when `enabled` and `shown()`; a silent
+    one otherwise.  Close it (or use it as a context manager)."""
+    from tqdm import tqdm
+    return tqdm(total=total, desc=desc, unit=unit, file=sys.stderr, leave=False,
+                disable=not (enabled and shown()))

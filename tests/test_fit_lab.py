@@ -3,11 +3,13 @@ points, noise, a baseline offset and drift, units in the header, rows out of ord
 instrument exports; the misfit verdict; intervals that hold the model's error.
 
 The curves come from the default mesh (tests/data/fit_*.csv, `benchmarks/fit_curves.py`:
-no independent code gives a retraction of these shells) and are fitted on the coarse mesh,
-so every round trip carries the model's own discretisation error.  Around the stored
-attached curve each test adds a non-contact approach (1 mm, 50 rows), the drop and 20
-detached rows, an offset delta0 = 0.05 mm of the contact point, and what it tests."""
+no stored CalculiX or FElupe curve has a retraction of these shells) and are fitted on the
+coarse mesh, so every round trip carries the model's own discretisation error.  Around the
+stored attached curve each test adds a non-contact approach (1 mm, 50 rows), the drop and
+20 detached rows, an offset delta0 = 0.05 mm of the contact point, and what it tests
+(`fit_curves.lab_curve`); `python benchmarks/fit_curves.py table` prints the table."""
 import functools
+import importlib.util
 import pathlib
 
 import numpy as np
@@ -18,59 +20,14 @@ from shell_adhesion.cli import main
 from shell_adhesion.errors import InputError
 from shell_adhesion.solver.fit import Misfit
 
-DATA = pathlib.Path(__file__).parent / "data"
-DELTA0_MM = 0.05
+CURVES = pathlib.Path(__file__).parent.parent / "benchmarks" / "fit_curves.py"
+_spec = importlib.util.spec_from_file_location("fit_curves", CURVES)
+fit_curves = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(fit_curves)
+stored, lab_curve, write_csv = fit_curves.stored, fit_curves.lab_curve, fit_curves.write_csv
+DELTA0_MM = fit_curves.DELTA0_MM
 C10_TOL, GAMMA_TOL = 0.015, 0.04      # issue 40: C10 within 1.5 %, gamma within 4 %
 DELTA0_TOL_MM = 0.05                  # the contact point: a fiftieth of the loading depth
-
-
-@functools.lru_cache(maxsize=None)
-def stored(name):
-    """(shell and truth dict, delta_mm, P_N) of a stored noise-free curve."""
-    lines = (DATA / f"fit_{name}.csv").read_text().splitlines()
-    truth = dict(item.split("=") for item in lines[0].lstrip("# ").split()[:6])
-    d, P = np.loadtxt(lines[2:], delimiter=",", unpack=True)
-    return {k: float(v) for k, v in truth.items()}, d, P
-
-
-def lab_curve(name="base", every=4, jump=3, smeared=False, noise=0.0, seed=1, offset_N=0.0,
-              drift_N_per_mm=0.0):
-    """Columns (t_s, delta_mm, P_N) of a test: approach from 1 mm before contact, the stored
-    attached curve (every `every`-th row of each part), `jump` rows on the drop from
-    P_dagger to zero (at delta_dagger, or `smeared`: delta going on), 20 detached rows;
-    Gaussian noise of `noise` x the largest force, a baseline offset + drift x delta."""
-    truth, d, P = stored(name)
-    turn = int(np.argmax(d))
-    keep = np.unique(np.concatenate([np.arange(0, turn + 1, every), [turn],
-                                     np.arange(len(d) - 1, turn, -every)]))
-    d, P = d[keep], P[keep]
-    step = d[-2] - d[-1]
-    approach = np.linspace(-1.0, 0.0, 50, endpoint=False)
-    k = np.arange(1, jump + 1)
-    d_drop = d[-1] - step * k if smeared else np.full(jump, d[-1])
-    P_drop = P[-1] * (1 - k / (jump + 1))
-    d_free = (d_drop[-1] if jump else d[-1]) - step * np.arange(1, 21)
-    delta = np.concatenate([approach, d, d_drop, d_free]) + DELTA0_MM
-    force = np.concatenate([0 * approach, P, P_drop, 0 * d_free])
-    force = force + offset_N + drift_N_per_mm * delta
-    rng = np.random.default_rng(seed)
-    force = force + noise * np.max(np.abs(force)) * rng.standard_normal(len(force))
-    return {"t_s": 0.1 * np.arange(len(delta)), "delta_mm": delta, "P_N": force}
-
-
-UNITS = {"delta_mm": ("delta_mm", 1.0), "delta_um": ("delta_mm", 1e3), "P_N": ("P_N", 1.0),
-         "P_mN": ("P_N", 1e3), "P_uN": ("P_N", 1e6), "t_s": ("t_s", 1.0)}
-
-
-def write_csv(path, cols, header=("delta_mm", "P_N"), bom=False, shuffle=False):
-    """Write the columns under `header` (units converted, UNITS), rows shuffled if asked."""
-    data = np.column_stack([cols[UNITS[h][0]] * UNITS[h][1] for h in header])
-    if shuffle:
-        data = data[np.random.default_rng(7).permutation(len(data))]
-    text = ",".join(header) + "\n" + "".join(",".join(f"{v:.9g}" for v in row) + "\n"
-                                             for row in data)
-    path.write_text(("\ufeff" if bom else "") + text, encoding="utf-8")
-    return path
 
 
 def fit_file(path, name="base", **kw):
@@ -100,18 +57,7 @@ def check_round_trip(result, name="base", delta0_inside=False):
     return out
 
 
-CASES = {
-    # name: (lab_curve arguments, write_csv arguments)
-    "jump_1": (dict(jump=1, noise=0.01), {}),
-    "jump_3": (dict(jump=3, noise=0.01), {}),
-    "jump_20_smeared": (dict(jump=20, smeared=True, noise=0.01), {}),
-    "noise_1": (dict(noise=0.01, every=1), {}),
-    "noise_5": (dict(noise=0.05, every=1), {}),
-    "baseline": (dict(noise=0.01, offset_N=0.3, drift_N_per_mm=-0.2), {}),
-    "mN_um": (dict(noise=0.01), dict(header=("delta_um", "P_mN"))),
-    "shuffled_time": (dict(noise=0.01), dict(header=("P_N", "t_s", "delta_mm"), shuffle=True)),
-    "bom": (dict(noise=0.01), dict(bom=True)),
-}
+CASES = fit_curves.CASES
 
 
 @pytest.mark.parametrize("case", sorted(CASES))
@@ -204,7 +150,8 @@ def test_two_segments(tmp_path):
 
 
 def test_other_shell_is_a_misfit(tmp_path, capsys):
-    """A curve of R = 40 mm, t = 3, h = 20 fitted as the base shell R = 20: one line, exit 1."""
+    """A curve of R = 40 mm, t = 6, h = 40 (the base shell x 2) fitted as the base shell R = 20:
+    one line, exit 1."""
     path = write_csv(tmp_path / "other.csv", lab_curve("other", noise=0.01))
     code = main(["fit", "--R", "20", "--t", "3", "--h", "20", "--curve", str(path),
                  "--mesh", "coarse"])

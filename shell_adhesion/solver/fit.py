@@ -13,12 +13,16 @@ The model of the test, from one PathSet (any C10 and gamma):
   one of the deepest state; P goes back down the loading curve to where that contact radius
   was reached, then along its relaxation path (cubic Hermite in delta) down to where the
   path meets the fixed-grips equilibrium curve G = gamma; then along that curve (the contact
-  shrinking) to the fixed-grips pull-off delta_dagger, where the shell jumps off.  Points
-  after the jump (detached) are not used.
+  shrinking) to the fixed-grips pull-off delta_dagger, where the shell jumps off.
 
-Confidence intervals are linearised at the optimum: cov = s^2 (J^T J)^-1 from the
-least-squares Jacobian J and s^2 = sum(r^2) / (m - n), with Student's t at 97.5 %.  They hold
-for independent noise of one variance and do not include the model's own (mesh) error.
+The parts of the curve: the jump-off from the retraction's least force and the drop after it
+(`split_curve`, moved earlier by the fit: `refine_jump`); the points from it on are not used.
+The baseline (`baseline`: offset and drift of the approach's non-contact part) is removed
+first and corrected in the fit.  The noise sd comes from the data (`noise_sd`).
+
+Intervals (95 %): profile likelihood (`profile_intervals`), widened in quadrature by the
+model's discretisation error (`with_model_error`); a fit whose residual rms exceeds
+MISFIT_FACTOR x hypot(noise, model error) is a misfit (`verdict`, `Misfit`).
 Pure functions (no files, no printing).
 """
 from dataclasses import dataclass, field, replace

@@ -1,13 +1,17 @@
 """C10 and gamma of one shell from a measured force-displacement curve:
 `shell_adhesion.fit_curve` and the `fit` command.
 
-Input with units: R, t, h in mm; the curve as delta_mm, P_N in time order (approach, then
-retraction; a CSV file with the header ``delta_mm,P_N``); optionally a measured pull-off
-force in N.  One set of FE paths of the shell (t/R, h/R) serves every C10 and gamma
-(DESIGN.md section 3); `solver.fit` fits C10, gamma and the contact offset delta0 (measured
-delta = model delta + delta0) by least squares, and also what the half-space tools give
-(Hertz loading, JKR pull-off).  The 95 % intervals are linearised from the least-squares
-Jacobian and residuals (solver.fit).  P > 0 compression, delta > 0 approach.
+Input with units: R, t, h in mm; the curve in time order (approach, then retraction), as a
+CSV file whose header names its columns with their units (`read_curve`: delta_mm, delta_um,
+P_N, P_mN, P_uN, t_s, index, segment, and rheometer and testing-machine exports; sorted by
+time or index when given) or as arrays (mm, N); optionally a measured pull-off force in N.
+One set of FE paths of the shell (t/R, h/R) serves every C10 and gamma (DESIGN.md section
+3); `solver.fit` removes the baseline, finds the jump-off, and fits C10, gamma and the
+contact offset delta0 (measured delta = model delta + delta0) by least squares, and also
+what the half-space tools give (Hertz loading, JKR pull-off).  The fit repeated on the next
+coarser mesh gives the model's error: the 95 % intervals (profile likelihood) are widened
+by it, and a residual beyond solver.fit.MISFIT_FACTOR x hypot(noise, model error) is a
+misfit (solver.fit.Misfit, exit 1).  P > 0 compression, delta > 0 approach.
 """
 import csv
 from dataclasses import dataclass, field
@@ -88,9 +92,10 @@ def read_curve(path) -> tuple:
                         ("delta", "delta_mm, delta_um, Gap [mm] or Extension (mm)")):
         if need not in kinds and not (need == "delta" and "gap" in kinds):
             raise InputError(f"{name}: header: no {need} column (one of {names})")
-    values, segments = [], []
+    values, segments, blank = [], [], 0
     for i, row in enumerate(rows[1:], start=2):
         if not row or all(not c.strip() for c in row):
+            blank += 1
             continue
         if len(row) != len(header):
             raise InputError(f"{name}: row {i}: {len(row)} fields, expected {len(header)} "
@@ -103,7 +108,8 @@ def read_curve(path) -> tuple:
                                  f"{', '.join(SEGMENTS)}")
             segments.append(SEGMENTS.index(seg))
         values.append({c: _cell(name, i, c, t) * COLUMNS[c][1] for c, t in cells.items()})
-    return _ordered(name, kinds, values, segments)
+    delta, P, how = _ordered(name, kinds, values, segments)
+    return delta, P, how + (f" ({blank} empty rows skipped)" if blank else "")
 
 
 def _ordered(name, kinds, values, segments) -> tuple:
@@ -111,15 +117,15 @@ def _ordered(name, kinds, values, segments) -> tuple:
     col = {k: np.array([v[c] for v in values], dtype=float) for k, c in kinds.items()
            if k != "segment"}
     n = len(values)
-    keys, how = [], "the file's order"
+    keys, how = [], "in the file's order"
     for kind in ("time", "index"):
         if kind in col:
             keys.append(col[kind])
-            how = f"by {kinds[kind]}"
+            how = f"ordered by {kinds[kind]}"
             break
     if segments:
         keys.append(np.array(segments))
-        how = "by segment (approach, retract), then " + how
+        how = "ordered by segment (approach, retract), then " + how.replace("ordered ", "")
     order = np.lexsort(keys) if keys else np.arange(n)    # the last key sorts first
     if "gap" in col:
         gap = col["gap"][order]
@@ -127,7 +133,7 @@ def _ordered(name, kinds, values, segments) -> tuple:
         how += f"; delta = first gap - {kinds['gap']}"
     else:
         delta = col["delta"][order]
-    return delta, col["P"][order], f"{n} rows, ordered {how}"
+    return delta, col["P"][order], f"{n} rows, {how}"
 
 
 def _cell(name, row, field, text):
@@ -326,8 +332,9 @@ class FitResult:
                           if e.intervals else "95 %, linearised: s^2 (J^T J)^-1, Student t"
                           + ("; gamma's from C10's only (the pull-off force taken as exact)"
                              if e.gamma_from == "pull_off" else ""))
-                         + (f"; widened in quadrature by the model's error (the fit repeated on "
-                            f"the {self.provenance.get('model_error_mesh')} mesh)"
+                         + (f"; widened in quadrature by the model's error (the shift of the "
+                            f"values when the {self.provenance.get('model_error_mesh')} mesh "
+                            f"fits this fit's curve)"
                             if self.other is not None else "; without the model's error"),
             "jkr": {"E_MPa": float(youngs_modulus_MPa(C10_j)), "C10_MPa": float(C10_j),
                     "gamma_J_m2": float(gh_j * C10_j * R * 1e3), "delta0_mm": float(x0_j * R),
@@ -351,10 +358,11 @@ def fit_curve(R_mm, t_mm, h_mm, curve, *, pull_off_N=None, interface="no_slip",
     R_mm, t_mm, h_mm : float
         The shell: outer radius R, thickness t and depth h [mm] (as `solve_case`).
     curve : str or Path or (delta_mm, P_N)
-        A CSV file with the header ``delta_mm,P_N``, or two sequences: the rim approach
-        delta [mm] and the force P [N] (P > 0 compression), in time order: approach to
-        the deepest point, then retraction (up to and beyond the jump-off, whose points
-        are left out).
+        A CSV file whose header names its columns (`read_curve`: delta_mm or delta_um,
+        P_N, P_mN or P_uN, t_s, index, segment, or an instrument's export), or two
+        sequences: the rim approach delta [mm] and the force P [N] (P > 0 compression), in
+        time order: approach to the deepest point, then retraction (up to and beyond the
+        jump-off, whose points are left out and counted).
     pull_off_N : float, optional
         A measured pull-off force [N] (its magnitude is used): gamma then comes from the
         fixed-load pull-off P* alone, and C10 and delta0 from the loading.
@@ -364,14 +372,19 @@ def fit_curve(R_mm, t_mm, h_mm, curve, *, pull_off_N=None, interface="no_slip",
     Returns
     -------
     FitResult
-        ``.to_dict()``: C10_MPa, gamma_J_m2 and delta0_mm with 95 % intervals (linearised
-        from the least-squares Jacobian and residuals, Student t), residual_rms_N, the
-        points used from each part and the half-space (Hertz + JKR) answer ``jkr``.
+        ``.to_dict()``: C10_MPa, gamma_J_m2 and delta0_mm (the contact point) with 95 %
+        intervals (profile likelihood, widened by the model's error from the next coarser
+        mesh), the baseline removed, residual_rms_N against noise_sd_N and
+        model_error_rms_N (the verdict), the rows used from each part and the half-space
+        (Hertz + JKR) answer ``jkr``.
 
     Raises
     ------
     InputError
         (a ValueError) before any computation, naming the field, row or file.
+    solver.fit.Misfit
+        If the residual is more than MISFIT_FACTOR times the noise and model error, or C10
+        is not a soft solid's; ``.result`` holds the fit.
     solver.fit.FitError
         If the curve cannot be fitted with the shell's paths.
     """
@@ -429,22 +442,7 @@ def fit_checked(inp: FitInput) -> FitResult:
         raise solver_fit.FitError(f"no fit within {MAX_SOLVES} solves of the paths")
     t3 = time.perf_counter()
     other_mesh = coarser_mesh(inp.mesh)
-    other = _paths(cap.t, cap.h, request, gamma_max, inp.interface, other_mesh)
-    # the coarser mesh fits the data (its curve against this fit's: the verdict's model
-    # error) and this fit's own curve (noise-free: the parameters' shift between the
-    # meshes is the model's, not the noise's: the intervals' model error)
-    used = np.concatenate([est.split.loading, est.split.retraction]).astype(int)
-    used = used[:len(est.residuals)]            # the loading alone with a pull-off force
-    p_model = p.copy()
-    p_model[used] = p[used] + est.residuals
-    try:
-        est_c, est_m = (solver_fit.fit_curve(other, x, q, p_pull, hertz=(est.C10, est.x0),
-                                             split=est.split, intervals=False,
-                                             baseline_parameters=base.parameters)
-                        for q in (p, p_model))
-    except (solver_fit.FitError, ValueError) as e:
-        raise solver_fit.FitError(f"the model's error cannot be estimated: the fit on the "
-                                  f"{other_mesh} mesh fails ({e})") from None
+    other, est_c, est_m = _companion(inp, cap, x, p, p_pull, est, base, gamma_max, depth)
     provenance = {"version": __version__, "mesh": inp.mesh, "interface": inp.interface,
                   "model_error_mesh": other_mesh, "solves": solves,
                   "model_error_s": round(time.perf_counter() - t3, 3),
@@ -452,6 +450,35 @@ def fit_checked(inp: FitInput) -> FitResult:
     result = FitResult(inp, est, jkr, ps, provenance, est_c, other, base, est_m)
     _judge(result)
     return result
+
+
+def _companion(inp, cap, x, p, p_pull, est, base, gamma_max, depth):
+    """(paths, fit of the data, fit of this fit's curve) on the next coarser mesh: the
+    first's curve against this fit's is the verdict's model error; the second is
+    noise-free, so the parameters' shift between the meshes is the model's, not the
+    noise's: the intervals' model error.  Solved deeper once if the coarser fit needs it."""
+    other_mesh = coarser_mesh(inp.mesh)
+    used = np.concatenate([est.split.loading, est.split.retraction]).astype(int)
+    used = used[:len(est.residuals)]            # the loading alone with a pull-off force
+    p_model = p.copy()
+    p_model[used] = p[used] + est.residuals
+    for _ in range(2):
+        other = _paths(cap.t, cap.h, Request.serving(gamma_max, depth), gamma_max,
+                       inp.interface, other_mesh)
+        try:
+            fits = [solver_fit.fit_curve(other, x, q, p_pull, hertz=(est.C10, est.x0),
+                                         split=est.split, intervals=False,
+                                         baseline_parameters=base.parameters)
+                    for q in (p, p_model)]
+            return (other, *fits)
+        except solver_fit.TooDeep as e:
+            depth = min(delta_bound(cap), _depth_bucket(max(depth, e.x_turn) * DEPTH_MARGIN))
+            error = e
+        except (solver_fit.FitError, ValueError) as e:
+            error = e
+            break
+    raise solver_fit.FitError(f"the model's error cannot be estimated: the fit on the "
+                              f"{other_mesh} mesh fails ({error})")
 
 
 def _judge(result):

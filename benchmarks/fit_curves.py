@@ -125,6 +125,7 @@ TABLE_CASES = dict(
     {name: (curve, fmt, "base") for name, (curve, fmt) in CASES.items()},
     noise_free_base=(dict(), {}, "base"),
     noise_free_thin=(dict(every=1), {}, "thin"),
+    shuffled_no_time=(dict(noise=0.01), dict(shuffle=True), "base"),
     other_shell=(dict(noise=0.01), {}, "other"),        # R 40 mm (base x 2) fitted as the base
     mN_read_as_N=(dict(noise=0.01, force_scale=1e3), {}, "base"),
 )
@@ -166,7 +167,8 @@ def table(mesh="coarse") -> str:
                              f"{r['gamma_J_m2']:.4g} [{g_lo:.4g}, {g_hi:.4g}] | 0: fits"
                              f"{ratio} |")
             else:
-                why = err.getvalue().strip().replace("|", "/")[:160]
+                why = err.getvalue().strip().replace(str(path), path.name).replace("|", "/")
+                why = why.replace("shell-adhesion: ", "")[:150]
                 lines.append(f"| {case} | {truth['C10_MPa']:g} / - | {truth['gamma_J_m2']:g} "
                              f"/ - | {code}: {why} |")
     return "\n".join(lines)

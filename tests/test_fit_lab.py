@@ -207,3 +207,13 @@ def test_bad_segment_value(tmp_path):
     path.write_text("segment,delta_mm,P_N\napproach,0,0\nunload,0.1,0\n", encoding="utf-8")
     with pytest.raises(InputError, match="row 3: segment: 'unload' must be one of"):
         fit_file(path)
+
+
+def test_shuffled_without_time(tmp_path, capsys):
+    """Rows out of order with nothing to sort them by: one line, exit 2, before any
+    computation (before: the turn was taken at the first deepest row and the rest fitted)."""
+    path = write_csv(tmp_path / "shuffled.csv", lab_curve(noise=0.01), shuffle=True)
+    code = main(["fit", "--R", "20", "--t", "3", "--h", "20", "--curve", str(path)])
+    err = capsys.readouterr().err
+    assert code == 2 and err.count("\n") == 1
+    assert "not in time order" in err and "t_s, index" in err

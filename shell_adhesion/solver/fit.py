@@ -39,6 +39,7 @@ from shell_adhesion.errors import InputError
 from shell_adhesion.theory import hertz_P_N, jkr_P_star_N
 
 MIN_LOADING_POINTS = 5
+MAX_BACKTRACK = 0.1     # rows whose delta travels back this share of its travel are not in time order
 MIN_BASELINE_POINTS = 5 # non-contact approach points needed for a baseline
 DRIFT_P = 0.01          # a baseline slope is fitted where its two-sided p-value is below
 RISE = 0.1              # contact is sought before P has risen by this share of its loading range
@@ -76,6 +77,20 @@ class Split:
     detached: np.ndarray
     drop: int = 0
     least: int = -1
+
+
+def backtrack_share(x) -> float:
+    """The share of the travel of x (time order) against the direction of its part: up to
+    the (first) deepest point x should rise, after it fall; 0 for a clean test, about 1/2
+    for rows in random order."""
+    x = np.asarray(x, float)
+    if len(x) < 3:
+        return 0.0
+    turn = int(np.argmax(x))
+    steps = np.diff(x)
+    against = np.concatenate([np.minimum(steps[:turn], 0.0), np.maximum(steps[turn:], 0.0)])
+    total = float(np.sum(np.abs(steps)))
+    return float(np.sum(np.abs(against))) / total if total > 0 else 0.0
 
 
 def noise_sd(p) -> float:

@@ -147,7 +147,8 @@ def _cell(name, row, field, text):
 
 
 def check_curve(delta_mm, P_N, name="curve"):
-    """The curve as float arrays; InputError unless it is finite, has at least
+    """The curve as float arrays; InputError unless it is finite, in time order (delta
+    rises to its deepest point and falls after it, solver.fit.MAX_BACKTRACK), has at least
     MIN_LOADING_POINTS points up to its deepest delta and compresses the shell (P > 0).
     Rows are numbered as in the CSV file (the header is row 1)."""
     try:
@@ -162,6 +163,13 @@ def check_curve(delta_mm, P_N, name="curve"):
         if len(bad):
             raise InputError(f"{name}: row {bad[0] + 2}: {column}: {v[bad[0]]} must be a "
                              "finite number")
+    back = solver_fit.backtrack_share(d)
+    if back > solver_fit.MAX_BACKTRACK:
+        raise InputError(f"{name}: the rows are not in time order: delta_mm goes back "
+                         f"{100 * back:.0f} % of its travel against the approach before its "
+                         f"deepest point and the retraction after it (at most "
+                         f"{100 * solver_fit.MAX_BACKTRACK:g} %); sort the file or give a time "
+                         "or index column (t_s, index)")
     n_load = int(np.argmax(d)) + 1 if len(d) else 0
     if n_load < solver_fit.MIN_LOADING_POINTS:
         raise InputError(f"{name}: {n_load} loading points (rows up to the deepest delta_mm); "

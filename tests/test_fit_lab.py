@@ -18,6 +18,7 @@ import pytest
 from shell_adhesion import fit_curve
 from shell_adhesion.cli import main
 from shell_adhesion.errors import InputError
+from shell_adhesion.solver import fit as solver_fit
 from shell_adhesion.solver.fit import Misfit
 
 CURVES = pathlib.Path(__file__).parent.parent / "benchmarks" / "fit_curves.py"
@@ -217,3 +218,42 @@ def test_shuffled_without_time(tmp_path, capsys):
     err = capsys.readouterr().err
     assert code == 2 and err.count("\n") == 1
     assert "not in time order" in err and "t_s, index" in err
+
+
+def test_noise_sd_from_the_data():
+    """White noise of sd 0.05 on a smooth curve (with a jump in it): found within 10 %."""
+    x = np.linspace(0.0, 1.0, 800)
+    p = np.sin(3 * x) + np.where(x > 0.7, -1.0, 0.0)
+    noisy = p + 0.05 * np.random.default_rng(5).standard_normal(len(x))
+    assert abs(solver_fit.noise_sd(noisy) / 0.05 - 1) < 0.1
+    assert solver_fit.noise_sd(p) < 1e-3
+
+
+@pytest.mark.parametrize("rows", [1, 3, 20])
+def test_jump_off_cut_at_the_drop(rows):
+    """A retraction whose least force is followed by a drop sampled by `rows` rows: the first
+    cut lies inside the drop, and the fitted attached curve moves it to the drop's start."""
+    up = np.linspace(0.0, 1.0, 50)
+    down = np.linspace(1.0, -0.3, 60)[1:]
+    attached = lambda d: 2 * np.clip(d, 0, None) ** 1.5 - 0.8 * np.clip(1 - d, 0, None) ** 0.5
+    p = np.concatenate([2 * up ** 1.5, attached(down)])
+    x = np.concatenate([up, down])
+    start = len(x)
+    k = np.arange(1, rows + 1)
+    x = np.concatenate([x, np.full(rows, x[-1]), x[-1] - 0.02 * np.arange(1, 11)])
+    p = np.concatenate([p, p[-1] * (1 - k / (rows + 1)), np.zeros(10)])
+    first = solver_fit.split_curve(x, p)
+    assert start <= first.detached[0] <= start + rows
+    model = np.concatenate([2 * up ** 1.5, attached(np.minimum(x[50:], 1.0))])
+    model[start:] = p[start - 1]                 # the attached curve held at its end
+    cut = solver_fit.refine_jump(first, p, model, 0.0)
+    assert cut == start
+    final = solver_fit.split_curve(x, p, cut)
+    # on the drop: the rows above an eighth of the least force (the last of 20 are below)
+    assert final.retraction[-1] == start - 1 and rows - 2 <= final.drop <= rows
+
+
+def test_rows_out_of_order_measured():
+    d = np.concatenate([np.linspace(0, 1, 20), np.linspace(1, -0.2, 20)])
+    assert solver_fit.backtrack_share(d) == 0.0
+    assert solver_fit.backtrack_share(np.random.default_rng(1).permutation(d)) > 0.3

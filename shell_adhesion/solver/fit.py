@@ -149,33 +149,35 @@ def baseline(x, p) -> Baseline:
     return Baseline(float(line.intercept), float(line.slope), int(np.sum(free)), True)
 
 
-def _least_and_crossing(p_ret):
+def _least_and_crossing(p_ret, sd):
     """(i_least, i_cross) of the retraction forces p_ret (time order): the least force of
     the running median (width SMOOTH) and the first point after it where the median is back
-    above JUMP_LEVEL of it (None: no drop, the curve ends before the jump-off)."""
+    above JUMP_LEVEL of it (None: no drop, the curve ends before the jump-off, or the least
+    force is not tensile beyond JUMP_RESIDUAL noise sd)."""
     if len(p_ret) < 3:
         return (int(np.argmin(p_ret)) if len(p_ret) else -1), None
     smooth = median_filter(p_ret, size=min(SMOOTH, len(p_ret)), mode="nearest")
     i = int(np.argmin(smooth))
     low = smooth[i]
-    if low >= 0:
+    if low >= -JUMP_RESIDUAL * sd:
         return i, None
     back = np.flatnonzero(smooth[i + 1:] >= JUMP_LEVEL * low)
     return i, (i + 1 + int(back[0]) if len(back) else None)
 
 
-def split_curve(x, p, start=None) -> Split:
+def split_curve(x, p, start=None, sd=None) -> Split:
     """Loading up to the (first) deepest point; retraction after it up to the jump-off.
     The jump-off is found from the retraction's physics: its least force (P*, on a running
     median) and the drop after it back towards zero; the first cut is where the drop has
     come JUMP_LEVEL of the way back (above any attached force: JKR's fixed-grips P_dagger
     is 0.56 P*), `start` (an index, from `refine_jump`) moves it earlier.  p must be free
-    of its baseline (`baseline`)."""
+    of its baseline (`baseline`); sd is its noise (default `noise_sd`)."""
     x, p = np.asarray(x, float), np.asarray(p, float)
+    sd = noise_sd(p) if sd is None else sd
     turn = int(np.argmax(x))
     idx = np.arange(len(x))
     ret = idx[turn + 1:]
-    least, cross = _least_and_crossing(p[ret])
+    least, cross = _least_and_crossing(p[ret], sd)
     cut = len(ret) if cross is None else cross
     if start is not None:
         cut = min(cut, max(start - turn - 1, least + 1))
@@ -388,8 +390,8 @@ def fit_curve(ps: PathSet, x, p, p_pull_off=None, hertz=None, split: Split = Non
     (`Estimate.baseline`) is fitted with the rest, so its uncertainty enters the
     intervals."""
     x, p = np.asarray(x, float), np.asarray(p, float)
-    parts = split if split is not None else split_curve(x, p)
     sd = noise_sd(p)
+    parts = split if split is not None else split_curve(x, p, sd=sd)
     C10_0, x0_0 = hertz if hertz is not None else fit_jkr(x, p)[:2]
     span = None
     nb = baseline_parameters
@@ -420,7 +422,7 @@ def fit_curve(ps: PathSet, x, p, p_pull_off=None, hertz=None, split: Split = Non
         start = refine_jump(parts, p, attached_model(ps, C10, g, x0, x, parts) + corr, sd)
         if not len(parts.detached) or start >= parts.detached[0]:
             break
-        parts = split_curve(x, p, start)
+        parts = split_curve(x, p, start, sd)
     _check_depth(ps, x.max() - x0)
     est = Estimate(C10, (), g, (), x0, (), full.fun, used, "retraction", span, parts,
                    baseline=tuple(float(b) for b in full.x[3:]))

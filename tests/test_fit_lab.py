@@ -257,3 +257,10 @@ def test_rows_out_of_order_measured():
     d = np.concatenate([np.linspace(0, 1, 20), np.linspace(1, -0.2, 20)])
     assert solver_fit.backtrack_share(d) == 0.0
     assert solver_fit.backtrack_share(np.random.default_rng(1).permutation(d)) > 0.3
+
+
+def test_noisy_displacement_is_in_order():
+    """A densely sampled displacement with noise larger than its step is still in order."""
+    d = np.concatenate([np.linspace(0, 1, 5000), np.linspace(1, -0.2, 5000)])
+    noisy = d + 1e-3 * np.random.default_rng(2).standard_normal(len(d))
+    assert solver_fit.backtrack_share(noisy) < solver_fit.MAX_BACKTRACK

@@ -261,13 +261,24 @@ def _print_fit(out):
     inp, j, used = out["input"], out["jkr"], out["points_used"]
     ci = lambda v: f"[{v[0]:.4g}, {v[1]:.4g}]"
     print(f"shell R = {inp['R_mm']:g} mm, t = {inp['t_mm']:g} mm, h = {inp['h_mm']:g} mm, "
-          f"interface {inp['interface']}, mesh {inp['mesh']}; curve {inp['curve']}")
+          f"interface {inp['interface']}, mesh {inp['mesh']}; curve {inp['curve']} "
+          f"({inp['rows']})")
     print(f"C10    = {out['C10_MPa']:.5g} MPa    95 % {ci(out['C10_MPa_ci95'])}")
     print(f"gamma  = {out['gamma_J_m2']:.5g} J/m^2  95 % {ci(out['gamma_J_m2_ci95'])} "
           f"(from the {out['gamma_from'].replace('_', '-')})")
-    print(f"delta0 = {out['delta0_mm']:.4g} mm     95 % {ci(out['delta0_mm_ci95'])}")
-    print(f"residual rms {out['residual_rms_N']:.3g} N; points used: {used['loading']} loading, "
-          f"{used['retraction']} retraction, {used['after_pull_off']} after the jump-off left out")
+    print(f"delta0 = {out['delta0_mm']:.4g} mm     95 % {ci(out['delta0_mm_ci95'])} "
+          "(the contact point)")
+    b = out["baseline"]
+    print(f"baseline: offset {b['offset_N']:.4g} N, drift {b['drift_N_per_mm']:.4g} N/mm "
+          + (f"from {b['non_contact_points']} non-contact points, removed" if b["removed"]
+             else "(no non-contact part found: nothing removed)"))
+    v = out["verdict"]
+    print(f"residual rms {out['residual_rms_N']:.3g} N = {v['ratio']:.2f} x hypot(noise "
+          f"{out['noise_sd_N']:.3g} N, model error {out['model_error_rms_N']:.3g} N): "
+          + ("a misfit" if v["misfit"] else f"fits (a misfit above {v['factor']:g} x)"))
+    print(f"rows used: {used['loading']} loading (with the non-contact approach), "
+          f"{used['retraction']} retraction; left out from the jump-off on: "
+          f"{used['after_pull_off']} ({used.get('on_the_drop', 0)} on the drop)")
     print(f"half-space (Hertz + JKR): E = {j['E_MPa']:.4g} MPa (C10 = {j['C10_MPa']:.4g} MPa), "
           f"gamma = {j['gamma_J_m2']:.4g} J/m^2, delta0 = {j['delta0_mm']:.4g} mm")
     print(f"intervals: {out['intervals']}")
@@ -572,8 +583,9 @@ def _parser():
     fit.add_argument("--t", required=True, help="shell thickness t [mm]")
     fit.add_argument("--h", required=True, help="depth h from apex to base plane [mm]")
     fit.add_argument("--curve", required=True, metavar="FILE.csv",
-                     help="measured curve: CSV with the header delta_mm,P_N, rows in time "
-                          "order (approach, then retraction); P > 0 compression")
+                     help="measured curve: CSV with a header naming its columns (delta_mm "
+                          "or delta_um, P_N, P_mN or P_uN, t_s, index, segment, or an "
+                          "instrument's: docs/fit.md); P > 0 compression")
     fit.add_argument("--pull-off-N", dest="pull_off_N", default=None,
                      help="a measured pull-off force [N]: gamma from P* alone")
     fit.add_argument("--interface", choices=INTERFACES, default="no_slip",

@@ -50,7 +50,8 @@ def test_round_trip():
     print(f"half-space JKR: gamma = {g_jkr:.4g} J/m^2, {100 * (g_jkr / g - 1):+.1f} % off")
     assert abs(g_jkr / g - 1) > 0.2
     out = result.to_dict()
-    assert out["points_used"] == {"loading": 40, "retraction": 40, "after_pull_off": 5}
+    assert out["points_used"] == {"loading": 40, "retraction": 40, "after_pull_off": 5,
+                                  "on_the_drop": 0}
     assert out["residual_rms_N"] < 0.02 * np.max(np.abs(result.input.P_N))
 
 
@@ -82,7 +83,7 @@ def test_cli_json_and_plot(tmp_path, capsys):
 
 
 BAD = {
-    "header": ("d,P\n0,0\n", "row 1: the header must be delta_mm,P_N"),
+    "header": ("d,P\n0,0\n", "header: unknown column 'd'; accepted: delta_mm, delta_um"),
     "number": ("delta_mm,P_N\n0,0\n0.1,abc\n", "row 3: P_N: 'abc' is not a number"),
     "nan": ("delta_mm,P_N\n0,0\nnan,0.1\n", "row 3: delta_mm: nan must be a finite number"),
     "few": ("delta_mm,P_N\n0,0\n0.1,0.1\n0.2,0.3\n0.1,0\n", "3 loading points"),

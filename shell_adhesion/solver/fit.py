@@ -13,20 +13,25 @@ The model of the test, from one PathSet (any C10 and gamma):
   one of the deepest state; P goes back down the loading curve to where that contact radius
   was reached, then along its relaxation path (cubic Hermite in delta) down to where the
   path meets the fixed-grips equilibrium curve G = gamma; then along that curve (the contact
-  shrinking) to the fixed-grips pull-off delta_dagger, where the shell jumps off.  Points
-  after the jump (detached) are not used.
+  shrinking) to the fixed-grips pull-off delta_dagger, where the shell jumps off.
 
-Confidence intervals are linearised at the optimum: cov = s^2 (J^T J)^-1 from the
-least-squares Jacobian J and s^2 = sum(r^2) / (m - n), with Student's t at 97.5 %.  They hold
-for independent noise of one variance and do not include the model's own (mesh) error.
+The parts of the curve: the jump-off from the retraction's least force and the drop after it
+(`split_curve`, moved earlier by the fit: `refine_jump`); the points from it on are not used.
+The baseline (`baseline`: offset and drift of the approach's non-contact part) is removed
+first and corrected in the fit.  The noise sd comes from the data (`noise_sd`).
+
+Intervals (95 %): profile likelihood (`profile_intervals`), widened in quadrature by the
+model's discretisation error (`with_model_error`); a fit whose residual rms exceeds
+MISFIT_FACTOR x hypot(noise, model error) is a misfit (`verdict`, `Misfit`).
 Pure functions (no files, no printing).
 """
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from scipy.interpolate import CubicHermiteSpline
-from scipy.optimize import brentq, least_squares
-from scipy.stats import t as student_t
+from scipy.ndimage import median_filter
+from scipy.optimize import brentq, least_squares, root_scalar
+from scipy.stats import linregress, median_abs_deviation, t as student_t
 
 from .case import PathSet, Relaxation
 from shell_adhesion.energy import OutOfRange, equilibrium, pull_off
@@ -34,7 +39,17 @@ from shell_adhesion.errors import InputError
 from shell_adhesion.theory import hertz_P_N, jkr_P_star_N
 
 MIN_LOADING_POINTS = 5
-JUMP_SHARE = 0.5        # a rise of P by this share of |min P| between two retraction points is the jump-off
+MAX_BACKTRACK = 0.1     # rows whose delta travels back this share of its travel are not in time order
+MIN_BASELINE_POINTS = 5 # non-contact approach points needed for a baseline
+DRIFT_P = 0.01          # a baseline slope is fitted where its two-sided p-value is below
+RISE = 0.1              # contact is sought before P has risen by this share of its loading range
+BASELINE_MARGIN = 0.3   # the non-contact part ends this share of the loading before that rise
+SMOOTH = 5              # running-median width (points) that finds the least retraction force
+JUMP_LEVEL = 0.25       # the drop is first cut where the force is back above this share of P*
+JUMP_RESIDUAL = 4.0     # a point this many noise sd above the fitted attached curve is on the drop
+JUMP_REFITS = 3         # fits that move the jump-off's start (each cut only moves earlier)
+MISFIT_FACTOR = 2.0     # residual rms above this x hypot(noise sd, model error) is a misfit
+PROFILE_STEPS = 8       # secant steps of one end of a profile-likelihood interval
 
 
 class FitError(ValueError):
@@ -52,29 +67,146 @@ class TooDeep(FitError):
 @dataclass(frozen=True)
 class Split:
     """The measured curve cut into its parts: indices of the loading points (to the deepest
-    delta), of the retraction points used (before the jump-off) and of the points after it."""
+    delta), of the retraction points used (before the jump-off) and of the points from the
+    jump-off on (`detached`: the drop and the detached shell); `drop` of these lie on the
+    drop itself (between the attached force and zero), `least` is the index of the
+    retraction's least force (-1: no retraction)."""
 
     loading: np.ndarray
     retraction: np.ndarray
     detached: np.ndarray
+    drop: int = 0
+    least: int = -1
 
 
-def split_curve(x, p) -> Split:
-    """Loading up to the (first) deepest point; retraction after it, up to the largest rise
-    of P if that rise is a jump-off (at least JUMP_SHARE of |min P| from a tensile P)."""
+def backtrack_share(x, samples=100) -> float:
+    """The share of the travel of x (time order) against the direction of its part: up to
+    the (first) deepest point x should rise, after it fall; 0 for a clean test, about 1/2
+    for rows in random order.  Taken on about `samples` evenly spaced rows, so that the
+    noise of a densely sampled displacement does not count as travel."""
+    x = np.asarray(x, float)
+    x = x[::max(1, len(x) // samples)]
+    if len(x) < 3:
+        return 0.0
+    turn = int(np.argmax(x))
+    steps = np.diff(x)
+    against = np.concatenate([np.minimum(steps[:turn], 0.0), np.maximum(steps[turn:], 0.0)])
+    total = float(np.sum(np.abs(steps)))
+    return float(np.sum(np.abs(against))) / total if total > 0 else 0.0
+
+
+def noise_sd(p) -> float:
+    """The standard deviation of white noise on the samples p (time order), from their
+    second differences (variance 6 sd^2 for white noise; a smooth curve sampled densely adds
+    little): 1.4826 x their median absolute deviation / sqrt(6), robust to the few
+    differences a jump or a kink makes."""
+    p = np.asarray(p, float)
+    if len(p) < 4:
+        return 0.0
+    return float(median_abs_deviation(np.diff(p, 2), scale="normal") / np.sqrt(6.0))
+
+
+@dataclass(frozen=True)
+class Baseline:
+    """The force measured without contact, p = offset + slope x (in p = P / R^2 and
+    x = delta / R), fitted to the approach's non-contact points (`points` of them; 0: none
+    found, nothing removed)."""
+
+    offset: float = 0.0
+    slope: float = 0.0
+    points: int = 0
+    drift: bool = False        # the slope differs from 0 (two-sided p < DRIFT_P); else 0
+
+    @property
+    def parameters(self) -> int:
+        """Baseline parameters fitted with the rest: 0 (none found), 1 (offset), 2 (drift)."""
+        return 0 if not self.points else 2 if self.drift else 1
+
+    def __call__(self, x):
+        return self.offset + self.slope * np.asarray(x, float)
+
+
+def baseline(x, p) -> Baseline:
+    """The zero-force offset and linear drift of the approach's non-contact part: the
+    loading points before x_r - BASELINE_MARGIN (x_turn - x_r), x_r where the running median
+    of P (width SMOOTH) first rises above RISE of its loading range (contact lies within
+    0.27 (x_turn - x_r) before x_r for a Hertz-like P ~ delta^1.5, at x_r for a linear one).
+    A line through them (at least MIN_BASELINE_POINTS; its slope only where it differs
+    from 0, p < DRIFT_P, else their mean), or none."""
     x, p = np.asarray(x, float), np.asarray(p, float)
+    turn = int(np.argmax(x))
+    xl = x[:turn + 1]
+    pl = median_filter(p[:turn + 1], size=min(SMOOTH, turn + 1), mode="nearest")
+    rise = pl - float(np.median(pl[:MIN_BASELINE_POINTS]))
+    if rise.max() <= 0:
+        return Baseline()
+    k = int(np.argmax(rise > RISE * rise.max()))
+    free = xl < xl[k] - BASELINE_MARGIN * (xl[-1] - xl[k])
+    if np.sum(free) < MIN_BASELINE_POINTS:
+        return Baseline()
+    pf = p[:turn + 1][free]
+    line = linregress(xl[free], pf) if np.ptp(pf) > 0 else None
+    if line is None or not line.pvalue < DRIFT_P:
+        return Baseline(float(np.mean(pf)), 0.0, int(np.sum(free)))
+    return Baseline(float(line.intercept), float(line.slope), int(np.sum(free)), True)
+
+
+def _least_and_crossing(p_ret, sd):
+    """(i_least, i_cross) of the retraction forces p_ret (time order): the least force of
+    the running median (width SMOOTH) and the first point after it where the median is back
+    above JUMP_LEVEL of it (None: no drop, the curve ends before the jump-off, or the least
+    force is not tensile beyond JUMP_RESIDUAL noise sd)."""
+    if len(p_ret) < 3:
+        return (int(np.argmin(p_ret)) if len(p_ret) else -1), None
+    smooth = median_filter(p_ret, size=min(SMOOTH, len(p_ret)), mode="nearest")
+    i = int(np.argmin(smooth))
+    low = smooth[i]
+    if low >= -JUMP_RESIDUAL * sd:
+        return i, None
+    back = np.flatnonzero(smooth[i + 1:] >= JUMP_LEVEL * low)
+    return i, (i + 1 + int(back[0]) if len(back) else None)
+
+
+def split_curve(x, p, start=None, sd=None) -> Split:
+    """Loading up to the (first) deepest point; retraction after it up to the jump-off.
+    The jump-off is found from the retraction's physics: its least force (P*, on a running
+    median) and the drop after it back towards zero; the first cut is where the drop has
+    come JUMP_LEVEL of the way back (above any attached force: JKR's fixed-grips P_dagger
+    is 0.56 P*), `start` (an index, from `refine_jump`) moves it earlier.  p must be free
+    of its baseline (`baseline`); sd is its noise (default `noise_sd`)."""
+    x, p = np.asarray(x, float), np.asarray(p, float)
+    sd = noise_sd(p) if sd is None else sd
     turn = int(np.argmax(x))
     idx = np.arange(len(x))
     ret = idx[turn + 1:]
-    detached = idx[:0]
-    if len(ret) >= 2:
-        rise = np.diff(p[turn:])
-        j = int(np.argmax(rise))
-        low = float(np.min(p[turn:]))
-        if low < 0 and rise[j] >= JUMP_SHARE * abs(low):
-            detached = ret[j:]
-            ret = ret[:j]
-    return Split(idx[:turn + 1], ret, detached)
+    least, cross = _least_and_crossing(p[ret], sd)
+    cut = len(ret) if cross is None else cross
+    if start is not None:
+        cut = min(cut, max(start - turn - 1, least + 1))
+    detached = ret[cut:]
+    drop = 0
+    if len(detached) and least >= 0:
+        level = JUMP_LEVEL * abs(float(np.min(p[ret])))
+        near_zero = np.flatnonzero(np.abs(p[detached]) < level / 2)
+        drop = int(near_zero[0]) if len(near_zero) else len(detached)
+    return Split(idx[:turn + 1], ret[:cut], detached, drop, int(turn + 1 + least) if least >= 0 else -1)
+
+
+def refine_jump(split: Split, p, p_model, sd) -> int:
+    """The index where the drop starts, from a fit: going back from the first cut, the
+    retraction points after the least force that lie more than JUMP_RESIDUAL x (the noise
+    sd, or the robust sd of the residuals if larger) above the fitted model, in one run up
+    to the cut.  `p_model` holds the model at every point (the attached curve extended)."""
+    ret = split.retraction
+    if not len(ret) or not len(split.detached) or split.least < 0:
+        return int(split.detached[0]) if len(split.detached) else len(p)
+    r = np.asarray(p, float) - np.asarray(p_model, float)
+    used = np.concatenate([split.loading, ret])
+    spread = max(sd, float(median_abs_deviation(r[used], scale="normal")))
+    k = int(split.detached[0])
+    while k - 1 > split.least and r[k - 1] > JUMP_RESIDUAL * spread:
+        k -= 1
+    return k
 
 
 def loading_F(ps: PathSet, x):
@@ -176,7 +308,8 @@ def retraction(ps: PathSet, path: Relaxation, gamma_hat: float) -> Retraction:
 
 @dataclass(frozen=True)
 class Estimate:
-    """A least-squares estimate: the values, their 95 % intervals, the residuals (in p)."""
+    """A least-squares estimate: the values, their 95 % intervals (of the data's scatter
+    alone: `with_model_error` adds the mesh's), the residuals (in p) of the points used."""
 
     C10: float
     C10_ci: tuple
@@ -188,6 +321,18 @@ class Estimate:
     used: dict                 # points used from each part
     gamma_from: str            # "retraction" or "pull_off"
     gamma_span: tuple = ()     # the gamma / (C10 R) the paths give (`gamma_range`)
+    split: Split = None        # the parts of the curve as fitted
+    intervals: str = ""        # how the intervals were made
+    baseline: tuple = ()       # (offset[, slope]) fitted besides (in p; added to the model)
+
+
+class Misfit(FitError):
+    """The fitted model does not describe the curve (its residual is MISFIT_FACTOR times
+    the noise and model error, or its C10 is not a soft solid's); `result` holds the fit."""
+
+    def __init__(self, text, result=None):
+        super().__init__(text)
+        self.result = result
 
 
 def _ci(value, sd, dof):
@@ -234,42 +379,169 @@ def gamma_of_P_star(ps: PathSet, C10: float, p_star: float, span: tuple = None) 
     return brentq(gap, lo, hi, xtol=1e-10, rtol=1e-10)
 
 
-def fit_curve(ps: PathSet, x, p, p_pull_off=None, hertz=None) -> Estimate:
-    """Fit C10, gamma / (C10 R) and x0 of one measured curve (x = delta / R, p = P / R^2,
-    in time order) with the paths `ps`; `p_pull_off` (P* / R^2, a measured pull-off force)
-    gives gamma through P* instead of the retraction.  `hertz` = (C10, x0) starts the search
-    (default: the half-space fit, `fit_jkr`)."""
+def fit_curve(ps: PathSet, x, p, p_pull_off=None, hertz=None, split: Split = None,
+              intervals: bool = True, baseline_parameters: int = 0) -> Estimate:
+    """Fit C10, gamma / (C10 R) and x0 of one measured curve (x = delta / R, p = P / R^2
+    free of its baseline, in time order) with the paths `ps`; `p_pull_off` (P* / R^2, a
+    measured pull-off force) gives gamma through P* instead of the retraction.  `hertz` =
+    (C10, x0) starts the search (default: the half-space fit, `fit_jkr`).  The jump-off's
+    start is moved by the fit (`refine_jump`, at most JUMP_REFITS fits) unless `split`
+    fixes the parts.  Intervals: profile likelihood (`profile_intervals`) unless not
+    `intervals` (then the values alone, the intervals empty).  `baseline_parameters` (1:
+    offset, 2: and slope, `Baseline.parameters`): a correction of the baseline
+    (`Estimate.baseline`) is fitted with the rest, so its uncertainty enters the
+    intervals."""
     x, p = np.asarray(x, float), np.asarray(p, float)
-    parts = split_curve(x, p)
-    xl, pl = x[parts.loading], p[parts.loading]
-    xr, pr = x[parts.retraction], p[parts.retraction]
-    if p_pull_off is None and not len(xr):
-        raise FitError("no retraction points before the jump-off and no pull-off force: "
-                       "gamma cannot be fitted")
+    sd = noise_sd(p)
+    parts = split if split is not None else split_curve(x, p, sd=sd)
     C10_0, x0_0 = hertz if hertz is not None else fit_jkr(x, p)[:2]
-    load = _fit_loading(ps, xl, pl, C10_0, x0_0)
-    used = dict(loading=len(xl), retraction=len(xr), after_pull_off=len(parts.detached))
-    if p_pull_off is not None:
-        _check_depth(ps, x.max() - load.x[1])
-        return _pull_off_estimate(ps, load, p_pull_off, used)
-    C10, x0 = load.x
-    span = gamma_range(ps)
-    g = _start_gamma(ps, C10, pr, span)
-    for _ in range(3):              # the turn path follows x0; refit if it changes
-        path = turn_path(ps, x.max() - x0)
-        full = _fit_all(ps, path, xl, pl, xr, pr, (C10, g, x0), span)
-        C10, g, x0 = full.x
-        if turn_path(ps, x.max() - x0).a == path.a:
+    span = None
+    nb = baseline_parameters
+    for refit in range(1 if split is not None else JUMP_REFITS):
+        xl, pl = x[parts.loading], p[parts.loading]
+        xr, pr = x[parts.retraction], p[parts.retraction]
+        if p_pull_off is None and not len(xr):
+            raise FitError("no retraction points before the jump-off and no pull-off force: "
+                           "gamma cannot be fitted")
+        load = _fit_loading(ps, xl, pl, C10_0, x0_0)
+        used = dict(loading=len(xl), retraction=len(xr), after_pull_off=len(parts.detached),
+                    on_the_drop=parts.drop)
+        if p_pull_off is not None:
+            _check_depth(ps, x.max() - load.x[1])
+            return replace(_pull_off_estimate(ps, load, p_pull_off, used), split=parts)
+        C10, x0 = load.x
+        span = span or gamma_range(ps)
+        g = _start_gamma(ps, C10, pr, span)
+        for _ in range(3):              # the turn path follows x0; refit if it changes
+            path = turn_path(ps, x.max() - x0)
+            full = _fit_all(ps, path, xl, pl, xr, pr, (C10, g, x0), span, nb)
+            C10, g, x0 = full.x[:3]
+            if turn_path(ps, x.max() - x0).a == path.a:
+                break
+        if split is not None or refit == JUMP_REFITS - 1:
             break
+        corr = float(full.x[3]) + (full.x[4] * x if nb == 2 else 0.0) if nb else 0.0
+        start = refine_jump(parts, p, attached_model(ps, C10, g, x0, x, parts) + corr, sd)
+        if not len(parts.detached) or start >= parts.detached[0]:
+            break
+        parts = split_curve(x, p, start, sd)
     _check_depth(ps, x.max() - x0)
+    est = Estimate(C10, (), g, (), x0, (), full.fun, used, "retraction", span, parts,
+                   baseline=tuple(float(b) for b in full.x[3:]))
+    if not intervals:
+        return est
+    ci = profile_intervals(_reparametrised(ps, path, xl, pl, xr, pr, span, nb), full)
+    return replace(est, C10_ci=ci[0], gamma_ci=ci[1], x0_ci=ci[2],
+                   intervals="profile likelihood")
+
+
+def _reparametrised(ps: PathSet, path: Relaxation, xl, pl, xr, pr, span, nb=0):
+    """The residuals as a function of (C10, gamma / R, x0[, baseline]), gamma / (C10 R)
+    held in span."""
+    def core(v):
+        C10, gR, x0 = v
+        g = float(np.clip(gR / C10, *span)) if C10 > 0 else span[1]
+        F_ret = retraction(ps, path, g)
+        return np.concatenate([C10 * loading_F(ps, xl - x0) - pl, C10 * F_ret(xr - x0) - pr])
+    return _with_baseline(core, np.concatenate([xl, xr]), nb)
+
+
+def profile_intervals(resid, full) -> list:
+    """95 % profile-likelihood intervals of (C10, gamma / R, x0) at the least-squares
+    optimum `full` (of C10, gamma / (C10 R), x0 and any baseline parameters): each end where
+    the residual sum of squares, minimised over the others, has risen by s^2 t^2 (s^2 =
+    SSR / (m - n) of n parameters, Student's t at 97.5 %: F(1, m - n)); found by secant steps from the linearised end
+    (at most PROFILE_STEPS; where they do not converge, the linearised end)."""
+    C10, g, x0 = full.x[:3]
+    n = len(full.x)
+    v_hat = np.concatenate([[C10, g * C10, x0], full.x[3:]])
+    r = resid(v_hat)
+    ssr = float(r @ r)
+    dof = max(len(r) - n, 1)
+    tq = float(student_t.ppf(0.975, dof))
+    rise = np.sqrt(ssr / dof) * tq             # sqrt of the SSR's allowed rise
     cov = _covariance(full)
-    dof = len(full.fun) - 3
-    sd = np.sqrt(np.diag(cov))
-    # gamma / R = gamma_hat C10: its variance by the delta method
-    grad = np.array([g, C10, 0.0])
-    sd_gR = float(np.sqrt(grad @ cov @ grad))
-    return Estimate(C10, _ci(C10, sd[0], dof), g, _ci(g * C10, sd_gR, dof), x0,
-                    _ci(x0, sd[2], dof), full.fun, used, "retraction", span)
+    grad = np.zeros(n)                         # gamma / R = g C10, by the delta method
+    grad[:2] = g, C10
+    sds = [np.sqrt(cov[0, 0]), float(np.sqrt(grad @ cov @ grad)), np.sqrt(cov[2, 2])]
+    out = []
+    for k, sd in enumerate(sds):
+        others = [i for i in range(n) if i != k]
+        warm = [v_hat[others]]
+
+        def excess(h):
+            def r2(w):
+                v = v_hat.copy()
+                v[k] += h
+                v[others] = w
+                return resid(v)
+            sol = least_squares(r2, warm[0], x_scale="jac", diff_step=1e-6)
+            return np.sqrt(max(2.0 * sol.cost - ssr, 0.0)) - rise
+
+        ends = []
+        for sign in (-1.0, 1.0):
+            h1 = sign * tq * sd
+            if not np.isfinite(h1) or h1 == 0 or rise == 0:
+                ends.append(v_hat[k] + (h1 if np.isfinite(h1) else 0.0))
+                continue
+            warm[0] = v_hat[others]
+            try:
+                sol = root_scalar(excess, x0=h1, x1=1.2 * h1, method="secant",
+                                  maxiter=PROFILE_STEPS, rtol=1e-2)
+                ok = sol.converged and sol.root * sign > 0
+            except (RuntimeError, ValueError, ArithmeticError):
+                ok = False
+            ends.append(v_hat[k] + (sol.root if ok else h1))
+        out.append((float(min(ends)), float(max(ends))))
+    return out
+
+
+def attached_model(ps: PathSet, C10, gamma_hat, x0, x, split: Split):
+    """The fitted model at every point of the curve as if the shell stayed attached (the
+    retraction's attached curve held at its end below delta_dagger)."""
+    rest = np.concatenate([split.retraction, split.detached]).astype(int)
+    return model(ps, C10, gamma_hat, x0, x, Split(split.loading, rest, rest[:0]))
+
+
+def with_model_error(value, ci, other) -> tuple:
+    """The 95 % interval `ci` of the data's scatter widened, in quadrature on each side, by
+    the model's discretisation error |value - other|, `other` the same fit on the next
+    coarser mesh of the family (Richardson's estimate of the finer mesh's error for a
+    first-order method, no safety factor)."""
+    e = abs(value - other)
+    return (value - float(np.hypot(value - ci[0], e)), value + float(np.hypot(ci[1] - value, e)))
+
+
+@dataclass(frozen=True)
+class Verdict:
+    """Goodness of fit: the residual rms against the noise sd estimated from the data
+    (`noise_sd`) and the rms difference of the fitted model on two meshes (its own error),
+    in p; a misfit when rms > MISFIT_FACTOR x hypot(noise, model)."""
+
+    rms: float
+    noise: float
+    model: float
+    factor: float = MISFIT_FACTOR
+
+    @property
+    def ratio(self) -> float:
+        allowed = float(np.hypot(self.noise, self.model))
+        return self.rms / allowed if allowed > 0 else np.inf
+
+    @property
+    def misfit(self) -> bool:
+        return self.ratio > self.factor
+
+
+def verdict(residuals, p, model_p, other_model_p) -> Verdict:
+    """The Verdict of a fit with `residuals` at its points used, the curve p (for its noise,
+    time order) and the fitted model on the fit's mesh and on the coarser one at the points
+    used."""
+    r = np.asarray(residuals, float)
+    diff = np.asarray(model_p, float) - np.asarray(other_model_p, float)
+    diff = diff[np.isfinite(diff)]
+    model_rms = float(np.sqrt(np.mean(diff ** 2))) if len(diff) else 0.0
+    return Verdict(float(np.sqrt(np.mean(r ** 2))), noise_sd(p), model_rms)
 
 
 def _start_gamma(ps: PathSet, C10, pr, span) -> float:
@@ -283,14 +555,29 @@ def _start_gamma(ps: PathSet, C10, pr, span) -> float:
         return float(np.sqrt(span[0] * span[1]))
 
 
-def _fit_all(ps: PathSet, path: Relaxation, xl, pl, xr, pr, start, span):
+def _with_baseline(core, x, nb):
+    """Residuals of `core` (of the first three parameters) plus a baseline correction
+    v[3] + v[4] x at the points x when nb = 2 (the baseline fitted with the rest)."""
+    if not nb:
+        return core
+    x = np.asarray(x, float)
+
     def resid(v):
+        return core(v[:3]) + v[3] + (v[4] * x if nb == 2 else 0.0)
+    return resid
+
+
+def _fit_all(ps: PathSet, path: Relaxation, xl, pl, xr, pr, start, span, nb=0):
+    def core(v):
         C10, g, x0 = v
         F_ret = retraction(ps, path, g)
         return np.concatenate([C10 * loading_F(ps, xl - x0) - pl, C10 * F_ret(xr - x0) - pr])
-    lo = [0.0, span[0], -np.inf]
-    hi = [np.inf, span[1], np.inf]
-    start = np.clip(start, [1e-300, span[0], -np.inf], hi)
+    resid = _with_baseline(core, np.concatenate([xl, xr]), nb)
+    lo = [0.0, span[0], -np.inf] + [-np.inf] * nb
+    hi = [np.inf, span[1], np.inf] + [np.inf] * nb
+    start = np.clip(np.concatenate([start[:3], np.zeros(nb) if len(start) < 3 + nb
+                                    else start[3:3 + nb]]),
+                    [1e-300, span[0], -np.inf] + [-np.inf] * nb, hi)
     return least_squares(resid, start, x_scale="jac", bounds=(lo, hi), diff_step=1e-6)
 
 

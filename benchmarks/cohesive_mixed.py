@@ -1,0 +1,54 @@
+"""Benchmark: the base shell's no_slip cohesive pull-off with the mixed-mode law (an
+option, `beta`) beside the normal-only law and the energy method's no_slip P*.
+
+    python benchmarks/cohesive_mixed.py [MESH] [LAMBDA] [BETA ...] [--error-bars]
+
+Base shell R = h = 20 mm, t = 3 mm, C10 = 0.3 MPa, gamma = 30 J/m^2, no_slip.  BETA
+"none" is the normal-only law (the default of `solve_cohesive_case`); a number the
+mixed-mode law with delta_c / delta_t = BETA (0: the normal-only law through the
+mixed-mode code).  Prints per law the wall time, dofs, states, Newton iterations, P* and
+its distance from the energy method's no_slip P* (computed once, same mesh name).  The
+same path (mesh, approach, settings) for every beta, so the wall times compare the laws'
+cost.  Default: coarse, lambda 1, betas none 0 1; no error bars unless --error-bars.
+"""
+import sys
+import time
+
+from shell_adhesion.study.case import solve_case
+from shell_adhesion.study.cohesive_case import solve_cohesive_case
+
+SHELL = dict(R_mm=20.0, t_mm=3.0, h_mm=20.0, C10_MPa=0.3, gamma_J_m2=30.0)
+
+
+def main(argv):
+    bars = "--error-bars" in argv
+    argv = [a for a in argv if a != "--error-bars"]
+    mesh = argv[0] if argv else "coarse"
+    lam = float(argv[1]) if len(argv) > 1 else 1.0
+    betas = [None if b == "none" else float(b) for b in argv[2:]] or [None, 0.0, 1.0]
+    t0 = time.perf_counter()
+    energy = solve_case(**SHELL, interface="no_slip", mesh=mesh, error_bars=False)
+    P_energy = energy.to_dict()["pull_off"][0]["fixed_load"]["P_N"]
+    print(f"base shell, no_slip, {mesh} mesh: energy method P* = {P_energy:.4f} N "
+          f"({time.perf_counter() - t0:.0f} s)", flush=True)
+    for beta in betas:
+        t0 = time.perf_counter()
+        res = solve_cohesive_case(**SHELL, tabor=lam, interface="no_slip", mesh=mesh,
+                                  beta=beta, error_bars=bars)
+        wall = time.perf_counter() - t0
+        out = res.to_dict()
+        prov, law = out["provenance"], "normal-only" if beta is None else f"beta = {beta:g}"
+        if res.refused:
+            print(f"lambda {lam:g}, {law}: refused ({res.refused}); {wall:.1f} s", flush=True)
+            continue
+        po = out["pull_off"]
+        err = "" if po["P_star_N_error"] is None else f" +- {po['P_star_N_error']:.4f}"
+        print(f"lambda {lam:g}, {law}: P* = {po['P_star_N']:.4f}{err} N "
+              f"({100 * (po['P_star_N'] / P_energy - 1):+.1f} % from the energy method's), "
+              f"a* = {po['a_star_mm']:.4f} mm; {prov['dofs']} dofs, {prov['states']} states, "
+              f"{prov['newton_iterations']} Newton iterations, path {prov['wall_s']:.1f} s, "
+              f"wall {wall:.1f} s", flush=True)
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])

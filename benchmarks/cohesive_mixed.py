@@ -9,11 +9,18 @@ mixed-mode law with delta_c / delta_t = BETA (0: the normal-only law through the
 mixed-mode code).  Prints per law the wall time, dofs, states, Newton iterations, P* and
 its distance from the energy method's no_slip P* (computed once, same mesh name).  The
 same path (mesh, approach, settings) for every beta, so the wall times compare the laws'
-cost.  Default: coarse, lambda 1, betas none 0 1; no error bars unless --error-bars.
+cost; then the cost of one linearisation (FE tangent plus interface) at the normal-only
+path's pull-off state, each law on the same state (interleaved, best of several), which
+a loaded machine disturbs less.  Default: coarse, lambda 1, betas none 0 1; no error bars
+unless --error-bars.
 """
 import sys
 import time
 
+import numpy as np
+
+from shell_adhesion.solver.cohesive import Interface
+from shell_adhesion.solver.forms import tangent
 from shell_adhesion.study.case import solve_case
 from shell_adhesion.study.cohesive_case import solve_cohesive_case
 
@@ -26,6 +33,7 @@ def main(argv):
     mesh = argv[0] if argv else "coarse"
     lam = float(argv[1]) if len(argv) > 1 else 1.0
     betas = [None if b == "none" else float(b) for b in argv[2:]] or [None, 0.0, 1.0]
+    normal = None
     t0 = time.perf_counter()
     energy = solve_case(**SHELL, interface="no_slip", mesh=mesh, error_bars=False)
     P_energy = energy.to_dict()["pull_off"][0]["fixed_load"]["P_N"]
@@ -42,12 +50,59 @@ def main(argv):
             print(f"lambda {lam:g}, {law}: refused ({res.refused}); {wall:.1f} s", flush=True)
             continue
         po = out["pull_off"]
+        if beta is None:
+            normal = res
         err = "" if po["P_star_N_error"] is None else f" +- {po['P_star_N_error']:.4f}"
         print(f"lambda {lam:g}, {law}: P* = {po['P_star_N']:.4f}{err} N "
               f"({100 * (po['P_star_N'] / P_energy - 1):+.1f} % from the energy method's), "
               f"a* = {po['a_star_mm']:.4f} mm; {prov['dofs']} dofs, {prov['states']} states, "
               f"{prov['newton_iterations']} Newton iterations, path {prov['wall_s']:.1f} s, "
               f"wall {wall:.1f} s", flush=True)
+
+    if normal is not None:
+        linearisation_cost(normal)
+
+
+def linearisation_cost(result, repeats=30, rounds=5):
+    """Seconds per linearisation (FE tangent + interface forces and tangent) at the
+    normal-only path's least-P state: normal-only against beta = 1 with the anchors a
+    tenth of delta_c from the nodes (best of `rounds` of `repeats`, interleaved)."""
+    path = result.solve.path
+    iface = Interface(_discretisation(result), result.input.law)
+    if iface.d.ndof != result.solve.ndof:
+        print("one linearisation: the rebuilt mesh is not the path's; not measured")
+        return
+    k = path.turn + int(np.argmin(path.array("P")[path.turn:]))
+    x = path.states[k].x
+    mixed = Interface(iface.d, iface.law, 1.0)
+    anchors = mixed.radii(x) + 0.1 * iface.law.delta_c
+    best = {"normal-only": np.inf, "beta = 1": np.inf}
+    for _ in range(rounds):
+        for name, call in (("normal-only", lambda: iface.add(x, *tangent(iface.d, x))),
+                           ("beta = 1", lambda: mixed.add(x, *tangent(iface.d, x), anchors))):
+            t0 = time.perf_counter()
+            for _ in range(repeats):
+                call()
+            best[name] = min(best[name], (time.perf_counter() - t0) / repeats)
+    print(f"one linearisation at P*: normal-only {1e3 * best['normal-only']:.2f} ms, beta = 1 "
+          f"{1e3 * best['beta = 1']:.2f} ms ({best['beta = 1'] / best['normal-only']:.2f} x)",
+          flush=True)
+
+
+def _discretisation(result):
+    """The discretisation the result's path was traced on (rebuilt from its input)."""
+    from shell_adhesion.solver.forms import discretise
+    from shell_adhesion.solver.geometry import Cap
+    from shell_adhesion.solver.mesh import cap_mesh
+    from shell_adhesion.solver.request import a_star_estimate, even_arc
+    from shell_adhesion.study.cohesive_case import fitted_spec, zone_estimate, zone_refinement
+    c = result.input.case
+    cap = Cap(c.t_mm / c.R_mm, c.h_mm / c.R_mm)
+    a_need = a_star_estimate(cap, result.input.gamma_hat)
+    fit = dict(uniform=even_arc(cap, a_need),
+               refine=zone_refinement(zone_estimate(result.input.gamma_hat, result.input.tabor),
+                                      c.mesh, result.input.zone_elements))
+    return discretise(cap_mesh(cap, fitted_spec(c.mesh, fit)))
 
 
 if __name__ == "__main__":

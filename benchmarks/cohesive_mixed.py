@@ -7,7 +7,8 @@ Base shell R = h = 20 mm, t = 3 mm, C10 = 0.3 MPa, gamma = 30 J/m^2, no_slip.  B
 "none" is the normal-only law (the default of `solve_cohesive_case`); a number the
 mixed-mode law with delta_c / delta_t = BETA (0: the normal-only law through the
 mixed-mode code).  Prints per law the wall time, dofs, states, Newton iterations, P* and
-its distance from the energy method's no_slip P* (computed once, same mesh name).  The
+its distance from the energy method's no_slip P* (computed once, same mesh name), and for
+a mixed-mode path the largest slip and shear traction in the cohesive zone at P*.  The
 same path (mesh, approach, settings) for every beta, so the wall times compare the laws'
 cost; then the cost of one linearisation (FE tangent plus interface) at the normal-only
 path's pull-off state, each law on the same state (interleaved, best of several), which
@@ -19,7 +20,7 @@ import time
 
 import numpy as np
 
-from shell_adhesion.solver.cohesive import Interface
+from shell_adhesion.solver.cohesive import Interface, mixed
 from shell_adhesion.solver.forms import tangent
 from shell_adhesion.study.case import solve_case
 from shell_adhesion.study.cohesive_case import solve_cohesive_case
@@ -58,9 +59,32 @@ def main(argv):
               f"a* = {po['a_star_mm']:.4f} mm; {prov['dofs']} dofs, {prov['states']} states, "
               f"{prov['newton_iterations']} Newton iterations, path {prov['wall_s']:.1f} s, "
               f"wall {wall:.1f} s", flush=True)
+        if beta is not None:
+            zone_mix(res)
 
     if normal is not None:
         linearisation_cost(normal)
+
+
+def zone_mix(result):
+    """Print the largest slip / delta_c and shear traction / sigma0 over the outer nodes
+    in the cohesive zone (0 < g < reach) at the least-P state of a mixed-mode path."""
+    path, law, beta = result.solve.path, result.input.law, result.input.beta
+    k = path.turn + int(np.argmin(path.array("P")[path.turn:]))
+    state = path.states[k]
+    iface = Interface(_discretisation(result), law, beta)
+    if iface.d.ndof != result.solve.ndof:
+        print("  zone: the rebuilt mesh is not the path's; not measured")
+        return
+    outer = iface.d.capmesh.outer
+    g = iface.d.capmesh.nodes[1, outer] + state.x[iface.d.uz(outer)]
+    s = iface.radii(state.x) - state.anchors
+    _, Tn, Tt, *_ = mixed(law, beta, g, s)
+    zone = (g > 0) & (g < law.reach)
+    print(f"  zone at P* ({zone.sum()} outer nodes): |s| <= "
+          f"{np.abs(s[zone]).max() / law.delta_c:.3f} delta_c, |T_t| <= "
+          f"{np.abs(Tt[zone]).max() / law.sigma0:.3f} sigma0, T_n up to "
+          f"{Tn[zone].max() / law.sigma0:.3f} sigma0", flush=True)
 
 
 def linearisation_cost(result, repeats=30, rounds=5):

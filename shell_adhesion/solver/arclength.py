@@ -78,6 +78,8 @@ class ArcState:
     # the mixed-mode law: Pi with the anchors updated at this state minus Pi (C10 R^3; the
     # path after it starts from that energy); 0 with the normal-only law
     anchor_jump: float = 0.0
+    # ... and the anchors / R it was solved with (None with the normal-only law)
+    anchors: np.ndarray = field(default=None, repr=False)
 
 
 @dataclass(frozen=True, eq=False)
@@ -306,7 +308,8 @@ def _state(cn, x, delta, K, r, t, it) -> ArcState:
     # the tangent t = (dx, d delta) moves the internal forces by K dx
     return ArcState(delta, rim_load(d, r), a, cohesive_radius(iface, x, a),
                     strain_energy(d, x), iface.energy(x, cn.anchors), it,
-                    (float(t[1]), rim_load(d, K @ t[0])), x.copy())
+                    (float(t[1]), rim_load(d, K @ t[0])), x.copy(),
+                    anchors=None if cn.anchors is None else cn.anchors.copy())
 
 
 def work(path: ArcPath) -> np.ndarray:

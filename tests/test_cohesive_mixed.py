@@ -6,6 +6,7 @@ The energy balance along a mixed-mode path is in test_cohesive_mixed_path.py."""
 import numpy as np
 import pytest
 
+from shell_adhesion.solver.arclength import trace
 from shell_adhesion.solver.cohesive import MIXED_EPS, CohesiveLaw, Interface, anchors_at, mixed
 from shell_adhesion.solver.forms import discretise
 from shell_adhesion.solver.geometry import Cap
@@ -129,6 +130,8 @@ def test_history_goes_with_the_law_only(disc):
     for bad in (-1.0, np.inf, np.nan):
         with pytest.raises(ValueError, match="beta"):
             Interface(d, LAW, bad)
+    with pytest.raises(ValueError, match="mixed-mode law .* no_slip only"):
+        trace(Interface(d, LAW, 1.0), 1e-3, interface="frictionless")
 
 
 def test_the_api_names_beta(monkeypatch):

@@ -44,6 +44,17 @@ BAD = [
     (DUGDALE + ["--tabor", "1", "--zone-elements", "nan"], "--zone-elements"),
     (DUGDALE + ["--tabor", "1", "--zone-elements", "x"], "--zone-elements: 'x' must be a number"),
     (["--zone-elements", "8"], "--zone-elements: 8 given with --adhesion energy"),
+    # the mixed-mode option (no_slip only)
+    (DUGDALE + ["--tabor", "1", "--interface", "no_slip", "--beta", "-1"],
+     "--beta: -1 must be >= 0 (delta_c / delta_t of the mixed-mode law)"),
+    (DUGDALE + ["--tabor", "1", "--interface", "no_slip", "--beta", "nan"],
+     "--beta: nan must be a finite number"),
+    (DUGDALE + ["--tabor", "1", "--interface", "no_slip", "--beta", "inf"],
+     "--beta: inf must be a finite number"),
+    (DUGDALE + ["--tabor", "1", "--beta", "1"], "--beta: 1 given with --interface "
+                                                "frictionless: the mixed-mode law is for no_slip only"),
+    (["--beta", "1"], "--beta: 1 given with --adhesion energy: a mixed-mode law needs "
+                      "--adhesion dugdale"),
 ]
 
 

@@ -18,13 +18,17 @@ below the plane), so the path has no contact events.  Tangentially the contact i
 frictionless, or no_slip: an outer node whose gap is below 0 at a converged state keeps
 its radial displacement (a prescribed dof) until a converged state finds its gap above
 RELEASE delta_c (it touched within the last step: it is held where that step left it).
-The law itself is normal only, so the cohesive zone beyond the held nodes slides.
+The normal-only law lets the cohesive zone beyond the held nodes slide; the mixed-mode law
+(an option for no_slip, `Interface.beta`) resists the slip of each outer node from its
+anchor, which the loop sets at every converged state (`cohesive.anchors_at`: held nodes and
+those beyond the law's reach take their radius); an update that changes the interface
+energy is recorded (`ArcState.anchor_jump`: what released anchors dissipate).
 
 The path starts from the shell lifted clear of the plane (delta0 < 0, no interaction: a
 rigid shift), approaches to delta_max, turns round and retracts until the shell is out of
 the cohesive range again.  Every loop is bounded (`ArcSettings`); a non-finite residual is a failed step.
 """
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 import math
 import time
 
@@ -32,7 +36,7 @@ import numpy as np
 
 from shell_adhesion.errors import ConvergenceError
 
-from .cohesive import Interface
+from .cohesive import Interface, anchors_at
 from .contact import INTERFACES, Constraints, constraints, gaps, rim_load
 from .forms import strain_energy, tangent
 from .linear import Timer
@@ -71,6 +75,11 @@ class ArcState:
     iterations: int = 0        # Newton iterations of the corrector that found it
     slope: tuple = (math.nan, math.nan)   # (d delta, dP) along the path's tangent there
     x: np.ndarray = field(default=None, repr=False)
+    # the mixed-mode law: Pi with the anchors updated at this state minus Pi (C10 R^3; the
+    # path after it starts from that energy); 0 with the normal-only law
+    anchor_jump: float = 0.0
+    # ... and the anchors / R it was solved with (None with the normal-only law)
+    anchors: np.ndarray = field(default=None, repr=False)
 
 
 @dataclass(frozen=True, eq=False)
@@ -92,6 +101,7 @@ class _Continuation:
     def __init__(self, iface: Interface, interface: str, s: ArcSettings):
         self.iface, self.d, self.interface, self.s = iface, iface.d, interface, s
         self.timer = Timer()
+        self.anchors = None          # the mixed-mode law's history (trace sets it)
         # the loading solver's factorisation of the free block and d(residual)/d(delta)
         problem = _Problem(self.d, interface, Settings(), self.timer)
         self.factor, self.solve = problem.factor, problem.solve
@@ -104,7 +114,7 @@ class _Continuation:
 
     def linearise(self, x):
         t0 = time.perf_counter()
-        K, r = self.iface.add(x, *tangent(self.d, x))
+        K, r = self.iface.add(x, *tangent(self.d, x), self.anchors)
         self.timer.assembly += time.perf_counter() - t0
         return K, r
 
@@ -178,6 +188,9 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
         raise ValueError(f"delta_max: {delta_max!r} must be a finite number > 0 (units of R)")
     if interface not in INTERFACES:
         raise ValueError(f"interface: {interface!r} must be one of {', '.join(INTERFACES)}")
+    if iface.beta is not None and interface != "no_slip":
+        raise ValueError(f"interface: {interface!r} with the mixed-mode law (beta = "
+                         f"{iface.beta:g}): it is for no_slip only")
     s, law, d = settings, iface.law, iface.d
     cn = _Continuation(iface, interface, s)
     delta0 = -2.0 * law.reach if delta0 is None else delta0
@@ -185,6 +198,8 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
     c, stuck = free_slip, np.zeros(0, dtype=int)
     x = np.zeros(d.ndof)
     x[d.n2:2 * d.n2] = -delta0                   # rigid shift: every u_z = -delta0
+    if iface.beta is not None:
+        cn.anchors = iface.radii(x)
     K, r = cn.linearise(x)
     delta = delta0
     t = cn.tangent_at(K, c)
@@ -244,9 +259,19 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
         if interface == "no_slip":
             g = gaps(d, x, cn.candidates)
             held = (g < 0.0) | (np.isin(cn.candidates, stuck) & (g <= RELEASE * law.delta_c))
-            if not np.array_equal(cn.candidates[held], stuck):
+            changed = not np.array_equal(cn.candidates[held], stuck)
+            if changed:
                 stuck = cn.candidates[held]
                 c = held_radially(d, free_slip, stuck)
+            if cn.anchors is not None:
+                before = states[-1].Pi
+                cn.anchors = anchors_at(iface, x, cn.anchors, stuck)
+                jump = iface.energy(x, cn.anchors) - before
+                if jump != 0.0:         # the tangent moved with the anchors
+                    states[-1] = replace(states[-1], anchor_jump=jump)
+                    K = cn.linearise(x)[0]
+                    changed = True
+            if changed:
                 try:
                     t = cn.tangent_at(K, c, t)
                 except ConvergenceError as err:
@@ -282,8 +307,9 @@ def _state(cn, x, delta, K, r, t, it) -> ArcState:
     a = contact_radius(iface, x)
     # the tangent t = (dx, d delta) moves the internal forces by K dx
     return ArcState(delta, rim_load(d, r), a, cohesive_radius(iface, x, a),
-                    strain_energy(d, x), iface.energy(x), it,
-                    (float(t[1]), rim_load(d, K @ t[0])), x.copy())
+                    strain_energy(d, x), iface.energy(x, cn.anchors), it,
+                    (float(t[1]), rim_load(d, K @ t[0])), x.copy(),
+                    anchors=None if cn.anchors is None else cn.anchors.copy())
 
 
 def work(path: ArcPath) -> np.ndarray:

@@ -33,6 +33,23 @@ step replaced by a cubic smooth-step of width w = `ramp` delta_c centred on delt
 
 so the peak sigma0 and the work of separation gamma are Dugdale's exactly, and sigma and
 its slope are continuous (Newton converges).  ramp -> 0 is Dugdale's law.
+
+Mixed mode (an option, `Interface.beta`; DESIGN.md section 10): the potential depends on
+the gap g and on the radial slip s = r - r_a of the point from its anchor r_a (history,
+per outer node, interpolated along the edge like r; the path following sets it, see
+`anchors_at`) through one effective opening l:
+
+    rho = sqrt(<g>^2 + beta^2 s^2 + eps^2),   rho0 = sqrt(<g>^2 + eps^2),
+    l = g + rho - rho0,                       Phi = phi_D(l) + penalty(g),
+
+phi_D the smoothed Dugdale potential above (continued with slope sigma0 below 0, as the
+normal-only law is), eps = MIXED_EPS delta_c.  Where g > 0 and beta s >> eps, l = rho - eps
+to within eps (DESIGN's effective opening); l = g wherever s = 0 or beta = 0, so beta = 0
+(and any point that has not slipped) is the normal-only law exactly, its pull below the
+plane included (DESIGN's l = rho - eps starts the normal traction from 0 at g = 0 and cannot
+give that for any eps).  Phi(l -> inf) - Phi(0, 0) = gamma on every path: the toughness
+does not depend on the mode mix; the peak tractions are sigma0 (normal) and beta sigma0
+(shear, at g = 0, beta s >> eps).
 """
 from dataclasses import dataclass
 from functools import cached_property
@@ -53,6 +70,9 @@ TABOR_RANGE = (0.05, 3.0)
 PENALTY = 1e3
 PENALTY_ONSET = 1e-3     # the penalty's slope rises over this fraction of delta_c
 GAUSS_POINTS = 8        # per quadratic edge: the smooth-step spans part of an edge
+# the mixed-mode law's regulariser eps / delta_c (DESIGN.md: about 0.02): the shear
+# traction rises to beta sigma0 over a slip of about eps / beta
+MIXED_EPS = 0.02
 
 
 @dataclass(frozen=True)
@@ -88,6 +108,13 @@ class CohesiveLaw:
 
     def __call__(self, g):
         """(phi, sigma = phi', dsigma/dg = phi'') at the gaps g."""
+        phi, sigma, dsigma = self.dugdale(g)
+        pen = self._penalty(np.asarray(g, dtype=float))
+        return phi + pen[0], sigma + pen[1], dsigma + pen[2]
+
+    def dugdale(self, g):
+        """(phi, sigma, dsigma/dg) of the smoothed Dugdale part alone (no penalty; below
+        g = 0 it continues with slope sigma0)."""
         g = np.asarray(g, dtype=float)
         w = self.ramp * self.delta_c
         g1 = self.delta_c - 0.5 * w
@@ -97,8 +124,7 @@ class CohesiveLaw:
                        -self.gamma + s0 * (g1 + w * (u - u ** 3 + 0.5 * u ** 4)))
         sigma = s0 * (1 - 3 * u ** 2 + 2 * u ** 3)
         dsigma = -6 * s0 / w * (u - u ** 2)
-        pen = self._penalty(g)
-        return phi + pen[0], sigma + pen[1], dsigma + pen[2]
+        return phi, sigma, dsigma
 
     def _penalty(self, g):
         """(energy, stress, slope) of the penalty: slope k (g < -e), rising linearly from
@@ -113,12 +139,45 @@ class CohesiveLaw:
         return energy, stress, slope
 
 
+def mixed(law: CohesiveLaw, beta: float, g, s):
+    """The mixed-mode potential (module docstring) at gaps g and slips s (units of R):
+    (Phi, Phi_g, Phi_s, Phi_gg, Phi_gs, Phi_ss); Phi_g is the normal traction T_n
+    (> 0 attractive, penalty included), Phi_s the shear traction T_t (opposes s)."""
+    g, s = np.asarray(g, dtype=float), np.asarray(s, dtype=float)
+    eps2 = (MIXED_EPS * law.delta_c) ** 2
+    gp = np.maximum(g, 0.0)
+    shear2 = beta * beta * s * s
+    rho0 = np.sqrt(gp * gp + eps2)
+    rho = np.sqrt(gp * gp + shear2 + eps2)
+    l = g + (rho - rho0)
+    l_g = 1.0 + (gp / rho - gp / rho0)
+    l_s = beta * beta * s / rho
+    # the second derivatives without the cancellation of 1 - g^2 / rho^2
+    l_gg = np.where(g > 0, (shear2 + eps2) / rho ** 3 - eps2 / rho0 ** 3, 0.0)
+    l_gs = -gp * l_s / (rho * rho)
+    l_ss = beta * beta * (gp * gp + eps2) / rho ** 3
+    phi, sig, dsig = law.dugdale(l)
+    pe, ps, pk = law._penalty(g)
+    return (phi + pe, sig * l_g + ps, sig * l_s, dsig * l_g * l_g + sig * l_gg + pk,
+            dsig * l_g * l_s + sig * l_gs, dsig * l_s * l_s + sig * l_ss)
+
+
 @dataclass(frozen=True, eq=False)
 class Interface:
-    """The cohesive law bound to the outer surface of a discretisation."""
+    """The cohesive law bound to the outer surface of a discretisation; `beta` (>= 0) the
+    mixed-mode law's delta_c / delta_t (None: the normal-only law).  With beta the
+    energy, forces and tangent take the anchors (`anchors_at`): deformed radii / R of the
+    outer nodes (capmesh.outer's order) from which the slips are measured; they are
+    history, passed with each call, never held here."""
 
     d: Discretisation
     law: CohesiveLaw
+    beta: float = None
+
+    def __post_init__(self):
+        b = self.beta
+        if b is not None and not (np.isfinite(b) and b >= 0):
+            raise ValueError(f"cohesive interface: beta = {b!r} must be a finite number >= 0")
 
     @cached_property
     def edges(self) -> np.ndarray:
@@ -126,6 +185,33 @@ class Interface:
         outer = self.d.capmesh.outer
         k = np.arange(0, len(outer) - 2, 2)
         return np.stack([outer[k], outer[k + 1], outer[k + 2]])
+
+    @cached_property
+    def edge_outer(self) -> np.ndarray:
+        """(3, n_edges) positions in capmesh.outer of each edge's nodes."""
+        k = np.arange(0, len(self.d.capmesh.outer) - 2, 2)
+        return np.stack([k, k + 1, k + 2])
+
+    def radii(self, x) -> np.ndarray:
+        """Deformed radii / R of the outer nodes (capmesh.outer's order)."""
+        outer = self.d.capmesh.outer
+        return self.d.capmesh.nodes[0, outer] + x[self.d.ur(outer)]
+
+    def _slips(self, x, anchors):
+        """Radial slips / R at the quadrature points, (n_edges, Q)."""
+        anchors = np.asarray(anchors, dtype=float)
+        if anchors.shape != (len(self.d.capmesh.outer),):
+            raise ValueError(f"anchors: shape {anchors.shape} must be "
+                             f"({len(self.d.capmesh.outer)},), one per outer node")
+        s_n = self.radii(x)[self.edge_outer] - anchors[self.edge_outer]
+        return s_n.T @ self._quadrature[0]
+
+    def _history(self, anchors):
+        """Check that anchors come with the mixed-mode law and only with it."""
+        if (self.beta is None) != (anchors is None):
+            raise ValueError("anchors: " + ("given to the normal-only law" if anchors is not None
+                                            else f"needed by the mixed-mode law (beta = "
+                                                 f"{self.beta:g})"))
 
     @cached_property
     def _quadrature(self):
@@ -164,24 +250,60 @@ class Interface:
         z_n = cm.nodes[1, self.edges] + x[self.d.uz(self.edges)]
         return r_n.T @ N, z_n.T @ N, r_n.T @ dN
 
-    def energy(self, x) -> float:
-        """Pi / (C10 R^3)."""
+    def energy(self, x, anchors=None) -> float:
+        """Pi / (C10 R^3); `anchors` with the mixed-mode law only."""
+        self._history(anchors)
         r, z, dr = self._points(x)
-        phi = self.law(z)[0]
+        phi = (self.law(z)[0] if anchors is None
+               else mixed(self.law, self.beta, z, self._slips(x, anchors))[0])
         return float(2 * np.pi * np.sum(phi * r * dr * self._quadrature[2]))
 
-    def residual(self, x) -> np.ndarray:
+    def residual(self, x, anchors=None) -> np.ndarray:
         """dPi/dx (units of C10 R^2), a full-length vector."""
-        return np.bincount(self.dofs.ravel(), weights=self._element(x, False)[0].ravel(),
-                           minlength=self.d.ndof)
+        f = self._parts(x, anchors, False)[0]
+        return np.bincount(self.dofs.ravel(), weights=f.ravel(), minlength=self.d.ndof)
 
-    def add(self, x, K, r):
+    def add(self, x, K, r, anchors=None):
         """(K + d2Pi/dx2, r + dPi/dx): K the CSR FE tangent (pattern kept, a new matrix)."""
-        f, k = self._element(x, True)
+        f, k = self._parts(x, anchors, True)
         r = r + np.bincount(self.dofs.ravel(), weights=f.ravel(), minlength=self.d.ndof)
         K = K.copy()
         np.add.at(K.data, self.slots.ravel(), k.ravel())
         return K, r
+
+    def _parts(self, x, anchors, with_tangent):
+        self._history(anchors)
+        if anchors is None:
+            return self._element(x, with_tangent)
+        return self._mixed_element(x, anchors, with_tangent)
+
+    def _mixed_element(self, x, anchors, with_tangent):
+        """Edge vectors and matrices of the mixed-mode law: the slip s = r - r_a moves
+        with u_r as r does, so d/dr_a gains Phi_s N_a r r' and every r-derivative of
+        Phi (N_a r' + r N_a') its Phi_s term."""
+        N, dN, w = self._quadrature
+        r, z, dr = self._points(x)
+        Phi, Pg, Ps, Pgg, Pgs, Pss = mixed(self.law, self.beta, z, self._slips(x, anchors))
+        c = 2 * np.pi * w
+        area = c * r * dr                                   # (e, q): 2 pi w r r'
+        G = N[:, None, :] * dr[None] + dN[:, None, :] * r[None]     # d(r r')/dr_a
+        fr = np.einsum("eq,aeq->ae", c * Phi, G) + np.einsum("eq,aq->ae", Ps * area, N)
+        fz = np.einsum("eq,aq->ae", Pg * area, N)
+        f = np.vstack([fr, fz])
+        if not with_tangent:
+            return f, None
+        k = np.empty((6, 6) + r.shape[:1])
+        NdN = np.einsum("aq,bq->abq", N, dN)
+        sG = np.einsum("eq,aeq,bq->abe", c * Ps, G, N)
+        k[:3, :3] = (np.einsum("eq,abq->abe", c * Phi, NdN + NdN.transpose(1, 0, 2))
+                     + sG + sG.transpose(1, 0, 2)
+                     + np.einsum("eq,aq,bq->abe", Pss * area, N, N))
+        rz = (np.einsum("eq,aeq,bq->abe", c * Pg, G, N)
+              + np.einsum("eq,aq,bq->abe", Pgs * area, N, N))
+        k[:3, 3:] = rz
+        k[3:, :3] = rz.transpose(1, 0, 2)
+        k[3:, 3:] = np.einsum("eq,aq,bq->abe", Pgg * area, N, N)
+        return f, k
 
     def _element(self, x, with_tangent):
         """Edge vectors (6, n_edges) and matrices (6, 6, n_edges)."""
@@ -205,6 +327,21 @@ class Interface:
         k[3:, :3] = rz.transpose(1, 0, 2)
         k[3:, 3:] = np.einsum("eq,aq,bq->abe", c * dsig * r * dr, N, N)
         return f, k
+
+
+def anchors_at(iface: Interface, x, anchors, held) -> np.ndarray:
+    """The mixed-mode law's anchors after the converged state x: the outer nodes `held`
+    (positions in capmesh.outer: held radially, in contact) and those beyond the law's
+    reach (gap >= reach: Phi is flat there before and after) take their deformed radius;
+    the others keep theirs (a point slips from where it last touched or last came
+    within reach)."""
+    out = np.array(anchors, dtype=float)
+    d = iface.d
+    outer = d.capmesh.outer
+    free = d.capmesh.nodes[1, outer] + x[d.uz(outer)] >= iface.law.reach
+    free[np.asarray(held, dtype=int)] = True
+    out[free] = iface.radii(x)[free]
+    return out
 
 
 def total(iface: Interface, x):

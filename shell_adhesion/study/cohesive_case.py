@@ -13,7 +13,9 @@ K^2))^(1/3), K = 4 E* / 3, E* = 8 C10 (the solid sphere's; for a shell it is a m
 the range against R).  The named mesh is refined at the contact where its apex elements
 are too large for the cohesive zone Maugis expects (`zone_refinement`, `fitted_spec`);
 a path that snaps from node to node without turning is traced again with twice the
-elements.  Error bars from the next coarser mesh (`solver.error_bars`), refined by the
+elements.  With no_slip, `beta` (an option) makes the law mixed-mode: the slip of a point
+from where it last touched opens the same potential as the gap (toughness gamma in any
+mode mix; beta = delta_c / delta_t, 0 the normal-only law; `solver.cohesive`).  Error bars from the next coarser mesh (`solver.error_bars`), refined by the
 same factor.
 
 Units: R, t, h, delta, a, c in mm; C10 and sigma0 in MPa; gamma in J/m^2; P in N (> 0
@@ -67,7 +69,7 @@ RETRY_FACTOR = 2.0
 # coarsely near P*, its error bar 0.0016 -> 0.03 N)
 REFINED_SETTINGS = ArcSettings(easy=6)
 COHESIVE_NAMES = dict(sigma0_MPa="sigma0_MPa", tabor="tabor", adhesion="adhesion",
-                      zone_elements="zone_elements")
+                      zone_elements="zone_elements", beta="beta")
 # the elements a user may ask for: fewer than one is no resolution; 32 bounds the cost
 # (the dofs at the contact grow with them: 8 at lambda 3 on the base shell, 21,066)
 ZONE_ELEMENTS_RANGE = (1.0, 32.0)
@@ -88,6 +90,7 @@ class CohesiveInput:
     sigma0_MPa: float
     tabor: float
     zone_elements: float = ZONE_ELEMENTS
+    beta: float = None        # the mixed-mode law's delta_c / delta_t (None: normal-only)
 
     @property
     def gamma_hat(self) -> float:
@@ -100,18 +103,23 @@ class CohesiveInput:
         return CohesiveLaw(self.sigma0_MPa / self.case.C10_MPa, self.gamma_hat)
 
     def as_dict(self) -> dict:
-        return dict(self.case.as_dict(), adhesion="dugdale", sigma0_MPa=self.sigma0_MPa,
-                    tabor=self.tabor, zone_elements=self.zone_elements)
+        out = dict(self.case.as_dict(), adhesion="dugdale", sigma0_MPa=self.sigma0_MPa,
+                   tabor=self.tabor, zone_elements=self.zone_elements)
+        if self.beta is not None:
+            out["beta"] = self.beta
+        return out
 
 
 def cohesive_input(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2, sigma0_MPa=None, tabor=None,
                    delta_max_mm=None, interface="frictionless", mesh="default",
-                   names=None, zone_elements=ZONE_ELEMENTS, **solid) -> CohesiveInput:
+                   names=None, zone_elements=ZONE_ELEMENTS, beta=None,
+                   **solid) -> CohesiveInput:
     """Check a cohesive case's input before any computation; InputError names the field
     as `names` calls it (API_NAMES and COHESIVE_NAMES by default).  `solid` holds the
     material and cavity arguments of `case_input`: only the open neo-Hookean shell is
     supported.  `interface` frictionless or no_slip, as the energy method's;
-    `zone_elements` the elements across the cohesive zone (ZONE_ELEMENTS_RANGE)."""
+    `zone_elements` the elements across the cohesive zone (ZONE_ELEMENTS_RANGE); `beta`
+    (None, or a finite number >= 0 with no_slip) the mixed-mode law's."""
     n = {**API_NAMES, **COHESIVE_NAMES, **(names or {})}
     inp = case_input(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2, delta_max_mm, interface, mesh,
                      n, **solid)
@@ -152,7 +160,21 @@ def cohesive_input(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2, sigma0_MPa=None, tabor
     if not lo <= ze <= hi:
         raise InputError(f"{n['zone_elements']}: {ze:g} must be between {lo:g} and {hi:g} "
                          f"(elements across the cohesive zone)")
-    return CohesiveInput(inp, float(sigma0), float(lam), float(ze))
+    return CohesiveInput(inp, float(sigma0), float(lam), float(ze), _beta(beta, inp, n))
+
+
+def _beta(beta, inp: CaseInput, n: dict):
+    """The checked mixed-mode beta (None: the normal-only law)."""
+    if beta is None:
+        return None
+    b = check_finite(beta, n["beta"], "1")
+    if not b >= 0:
+        raise InputError(f"{n['beta']}: {b:g} must be >= 0 (delta_c / delta_t of the "
+                         f"mixed-mode law)")
+    if inp.interface != "no_slip":
+        raise InputError(f"{n['beta']}: {b:g} given with {n['interface']} {inp.interface}: "
+                         f"the mixed-mode law is for no_slip only")
+    return float(b)
 
 
 @dataclass(frozen=True, eq=False)
@@ -221,7 +243,11 @@ class CohesiveCaseResult:
 
     def _law_dict(self):
         law, R = self.input.law, self.input.case.R_mm
-        return dict(name="Dugdale", sigma0_MPa=self.input.sigma0_MPa, tabor=self.input.tabor,
+        mixed = {} if self.input.beta is None else dict(
+            mixed_mode=f"beta = {self.input.beta:g} (delta_c / delta_t), toughness gamma in "
+                       f"any mode mix")
+        return dict(name="Dugdale", **mixed, sigma0_MPa=self.input.sigma0_MPa,
+                    tabor=self.input.tabor,
                     gamma_J_m2=self.input.case.gamma_J_m2[0],
                     delta_c_mm=length_mm(law.delta_c, R),
                     smooth_step=f"cubic, {law.ramp:g} delta_c wide")
@@ -247,7 +273,7 @@ def _clean(v):
 
 def solve_cohesive_case(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2, *, sigma0_MPa=None, tabor=None,
                         delta_max_mm=None, interface="frictionless", mesh="default",
-                        zone_elements=ZONE_ELEMENTS, error_bars=True,
+                        zone_elements=ZONE_ELEMENTS, beta=None, error_bars=True,
                         progress=False) -> CohesiveCaseResult:
     """The Maugis-Dugdale pull-off of one open neo-Hookean shell on a rigid plane.
 
@@ -259,13 +285,16 @@ def solve_cohesive_case(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2, *, sigma0_MPa=Non
     elements across the cohesive zone Maugis expects (1 to 32; where the named mesh has
     more it is kept); a path that does not turn round or does not leave the cohesive
     range is traced once more with RETRY_FACTOR times as many (the notes and
-    provenance["first_path"] say so).  `error_bars`: the same path on the next coarser
+    provenance["first_path"] say so).  `beta` (no_slip only; None: the normal-only law,
+    the default): the mixed-mode law with delta_c / delta_t = beta (>= 0; 0 is the
+    normal-only law through the mixed-mode code).  `error_bars`: the same path on the next coarser
     mesh (not when the requested mesh's path is refused or was retried).  `progress`: a
     line per 50 states on stderr.  The input is checked before any computation
     (InputError names the field).
     """
     inp = cohesive_input(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2, sigma0_MPa, tabor,
-                         delta_max_mm, interface, mesh, zone_elements=zone_elements)
+                         delta_max_mm, interface, mesh, zone_elements=zone_elements,
+                         beta=beta)
     return solve_checked(inp, error_bars, progress)
 
 
@@ -297,7 +326,7 @@ def solve_checked(inp: CohesiveInput, error_bars=True, progress=False,
              f"{fit['refine']:.2g}): {inp.zone_elements:g} elements across the cohesive zone "
              f"expected at the pull-off (a sphere's, Maugis: {zone * c.R_mm:.3g} mm)")
     deadline = None if timeout_s is None else time.monotonic() + timeout_s
-    solve = _solve(cap, inp.law, c.interface, c.mesh, fit, units, deadline)
+    solve = _solve(cap, inp.law, c.interface, c.mesh, fit, units, deadline, inp.beta)
     elements, first = inp.zone_elements, None
     retry = dict(fit, refine=zone_refinement(zone, c.mesh, RETRY_FACTOR * elements))
     if (solve.path_failed and RETRY_FACTOR * elements <= ZONE_ELEMENTS_RANGE[1]
@@ -307,10 +336,11 @@ def solve_checked(inp: CohesiveInput, error_bars=True, progress=False,
              f"{first.refused} after {len(first.path.states)} states ({first.wall_s:.0f} s): "
              f"traced again with {elements:g} (the {c.mesh} mesh x {fit['refine']:.2g} at "
              f"the contact)")
-        solve = _solve(cap, inp.law, c.interface, c.mesh, fit, units, deadline)
+        solve = _solve(cap, inp.law, c.interface, c.mesh, fit, units, deadline, inp.beta)
     # the next coarser mesh with the retried factor has the failed path's elements at
     # the contact: its path is not run
-    coarser = (_solve(cap, inp.law, c.interface, coarser_mesh(c.mesh), fit, units, deadline)
+    coarser = (_solve(cap, inp.law, c.interface, coarser_mesh(c.mesh), fit, units, deadline,
+                      inp.beta)
                if error_bars and not solve.refused and first is None else None)
     if not solve.refused and solve.zone_edges < ZONE_EDGES_MIN:
         notes.append(f"the cohesive zone at the pull-off spans {solve.zone_edges:.2g} outer "
@@ -339,13 +369,14 @@ def solve_checked(inp: CohesiveInput, error_bars=True, progress=False,
     return CohesiveCaseResult(inp, solve, coarser, tuple(notes), prov)
 
 
-def _solve(cap, law, interface, mesh, fit, units=None, deadline=None) -> CohesiveSolve:
+def _solve(cap, law, interface, mesh, fit, units=None, deadline=None,
+           beta=None) -> CohesiveSolve:
     """Trace the path with `interface` contact on `mesh` (fitted to the zone:
     `fitted_spec`) and read its pull-off; `units` (R_mm, C10_MPa): report progress in them;
-    `deadline` (time.monotonic()): TimeoutError after it."""
+    `deadline` (time.monotonic()): TimeoutError after it; `beta` the mixed-mode law's."""
     t0 = time.perf_counter()
     d = discretise(cap_mesh(cap, fitted_spec(mesh, fit)))
-    iface = Interface(d, law)
+    iface = Interface(d, law, beta)
     report = None if units is None else _progress_line(mesh, *units)
     if deadline is not None:
         report = _with_deadline(report, deadline, mesh)

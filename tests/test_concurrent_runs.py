@@ -13,7 +13,7 @@ from shell_adhesion.study import run, sharing
 from shell_adhesion.study.keys import pathset_key
 from shell_adhesion.study.progress import Progress
 
-from conftest import ENV, REPO
+from conftest import ENV, REPO, load_cube
 
 # one shell, 2 C10 x 2 gamma: one path set (coarse mesh, shallow loading)
 STUDY = """\
@@ -58,13 +58,6 @@ def die_holding(directory, fp, run_id):
     assert proc.returncode == 9, proc.stderr
 
 
-def load(path):
-    with xr.open_dataset(path) as ds:
-        ds = ds.load()
-    ds.attrs.pop("history")
-    return ds
-
-
 def test_two_runs_started_together_compute_each_set_once(tmp_path):
     (tmp_path / "twice.yaml").write_text(STUDY)
     cat = tmp_path / "cat"
@@ -93,8 +86,8 @@ def test_two_runs_started_together_compute_each_set_once(tmp_path):
     assert len(stored) == 1
     assert sorted(r["computed"] for r in runs) == [0, 1]    # the set was computed once
     assert sorted(r["reused"] for r in runs) == [0, 1]
-    xr.testing.assert_identical(load(tmp_path / "a" / "twice.nc"),
-                                load(tmp_path / "b" / "twice.nc"))
+    xr.testing.assert_identical(load_cube(tmp_path / "a" / "twice.nc"),
+                                load_cube(tmp_path / "b" / "twice.nc"))
 
 
 def test_a_claim_is_exclusive_until_its_run_is_gone(tmp_path):
@@ -170,3 +163,21 @@ def test_a_run_that_breaks_records_its_exit_code(tmp_path, monkeypatch):
     with Catalogue(tmp_path / "cat") as cat:
         assert [r["exit_code"] for r in cat.runs()] == [1]
         assert cat.db.execute("SELECT COUNT(*) FROM claims").fetchone()[0] == 0
+
+
+def test_an_index_another_run_is_still_creating_reads_as_no_catalogue(tmp_path):
+    """The index file exists before its tables do (another run is creating it): a reader
+    finds no catalogue there instead of failing on a missing table (it did, one run in
+    four started together, with a traceback)."""
+    from shell_adhesion.catalogue.store import INDEX
+    from shell_adhesion.study.plan import make_plan
+    from shell_adhesion.study.config import load_study
+    (tmp_path / "cat").mkdir()
+    (tmp_path / "cat" / INDEX).touch()                 # as sqlite3.connect leaves it
+    with pytest.raises(FileNotFoundError, match="being created"):
+        Catalogue(tmp_path / "cat", create=False)
+    (tmp_path / "twice.yaml").write_text(STUDY)
+    plan = make_plan(load_study(tmp_path / "twice.yaml"))
+    assert run._held_by_index(plan, tmp_path / "cat") == 0
+    with Catalogue(tmp_path / "cat") as cat:           # a creator finishes the job
+        assert cat.candidates(plan.shells[0].key) == []

@@ -184,6 +184,10 @@ class Catalogue:
             self.files.mkdir(parents=True, exist_ok=True)
         self.db = sqlite3.connect(index, timeout=TIMEOUT_S, isolation_level=None)
         self.db.row_factory = sqlite3.Row
+        if not create and self.db.execute(
+                "SELECT 1 FROM sqlite_master WHERE name = 'pathsets'").fetchone() is None:
+            self.db.close()         # another run is creating it: nothing is there yet
+            raise FileNotFoundError(f"no catalogue at {self.dir} (its index is being created)")
         if create:
             self.db.execute("PRAGMA journal_mode=WAL")
             self.db.execute("PRAGMA synchronous=FULL")

@@ -551,9 +551,11 @@ class Outcome:
 def _held_by_index(plan: Plan, catalogue) -> int:
     """How many of the plan's sets the catalogue's index holds (read only; 0 if absent)."""
     directory = Path(catalogue) if catalogue is not None else default_dir()
-    if not (directory / INDEX).exists():
+    try:
+        cat = Catalogue(directory, create=False)
+    except FileNotFoundError:       # absent, or another run is creating it
         return 0
-    with Catalogue(directory, create=False) as cat:
+    with cat:
         return sum(bool(cat.candidates(s.key)) for s in plan.all_shells)
 
 

@@ -217,10 +217,9 @@ def equilibrium(surface: EnergySurface, gamma: float) -> Equilibrium:
     if len(a) < 4:
         raise NotBracketed(f"gamma/(C10 R) = {gamma:g}: fewer than 4 relaxation paths reach "
                            "equilibrium; the paths are too short for this gamma", few=True)
-    if np.any(np.diff(a) <= 0):
-        raise NotBracketed(f"gamma/(C10 R) = {gamma:g}: the covered radii of the equilibrium "
-                           "points are not increasing: the held edges slide past each other",
-                           few=True)
+    if np.any(np.diff(a) <= 0):     # no deeper loading or longer path mends this
+        raise OutOfRange(f"gamma/(C10 R) = {gamma:g}: the covered radii of the equilibrium "
+                         "points are not increasing: the held edges slide past each other")
     sP, sd = CubicSpline(a, Pl), CubicSpline(a, dl)
     return Equilibrium(gamma, a, dl, Pl, sP(a, 1) > 0, sd(a, 1) > 0)
 

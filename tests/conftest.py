@@ -103,3 +103,13 @@ def forbid_fe(monkeypatch):
         mod = importlib.import_module(module)
         for name in names:
             monkeypatch.setattr(mod, name, forbidden(f"{module}.{name}"))
+
+
+def load_cube(path):
+    """A study's cube read into memory, without its history attribute (which names the
+    run): for comparing the cubes of two runs."""
+    import xarray as xr
+    with xr.open_dataset(path) as ds:
+        ds = ds.load()
+    ds.attrs.pop("history")
+    return ds

@@ -14,7 +14,7 @@ import xarray as xr
 from shell_adhesion.catalogue import Catalogue, list_entries
 from shell_adhesion.study.run import execute, summary
 
-from conftest import ENV, REPO
+from conftest import ENV, REPO, load_cube
 
 # a two-shell study killed between its shells (about 1.5 minutes; test_study_faults kills
 # one in the middle of a shell in CI): `python -m pytest -m slow` runs it
@@ -49,13 +49,6 @@ def group_alive(pgid) -> bool:
         return True
     except ProcessLookupError:
         return False
-
-
-def load(path):
-    with xr.open_dataset(path) as ds:
-        ds = ds.load()
-    ds.attrs.pop("history")
-    return ds
 
 
 def test_killed_run_resumes(tmp_path):
@@ -102,6 +95,6 @@ def test_killed_run_resumes(tmp_path):
     reference = execute(study, tmp_path / "reference", catalogue=tmp_path / "cat2",
                         progress=False)
     assert reference.exit_code == 0 and len(reference.computed) == 2
-    resumed, cold = load(again.output), load(reference.output)
+    resumed, cold = load_cube(again.output), load_cube(reference.output)
     assert (resumed["status"] == "ok").all()
     xr.testing.assert_identical(resumed, cold)

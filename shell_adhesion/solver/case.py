@@ -212,13 +212,17 @@ class PathSet:
     loading_p: np.ndarray = None    # cavity: gauge pressure / C10 (NaN if open)
     cavity: Cavity = OPEN           # what fills the cavity (solver.cavity)
     uniform: float = None           # arc / R meshed evenly from the apex (None: the family's)
-    gamma_edge: float = 0.0         # gamma / (C10 R) of the edge force the paths were relaxed
-    #                                 with (frictionless, solver.edge; 0: none, first order)
 
     def __post_init__(self):
         for name in ("loading_V", "loading_p"):
             if getattr(self, name) is None:
                 object.__setattr__(self, name, np.full(len(self.loading_delta), np.nan))
+
+    @property
+    def gamma_edge(self) -> float:
+        """gamma / (C10 R) of the edge force its paths were relaxed with (solver.edge; 0:
+        none, the energy method's first order)."""
+        return max((r.gamma_edge for r in self.relaxations), default=0.0)
 
     def surface(self) -> EnergySurface:
         """U_E(a, delta) and G of the usable paths (built once: the set is immutable)."""
@@ -468,7 +472,7 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
                  timing=timing_stats(loading.timer, relaxations))
     return pathset_of(t, h, interface, mesh, delta_max, gamma_max, loading, relaxations,
                       stats, loading_views(d, loading), cavity, cavity_lift(d),
-                      uniform, gamma_edge), d, loading
+                      uniform), d, loading
 
 
 def start_key(start: State, reach: float = 1.0) -> tuple:
@@ -499,8 +503,7 @@ def timing_stats(loading_timer, relaxations) -> dict:
 
 
 def pathset_of(t, h, interface, mesh, delta_max, gamma_max, loading, relaxations, stats,
-               views=(), cavity: Cavity = OPEN, lift: float = 0.0, uniform: float = None,
-               gamma_edge: float = 0.0):
+               views=(), cavity: Cavity = OPEN, lift: float = 0.0, uniform: float = None):
     """The PathSet of a loading path, its Relaxations and the loading views; the
     relaxations' views move to the set's (profiles, then stress maps, each in stage order).
     The set's stats gain the element quality and the contact-zone inversion
@@ -521,7 +524,7 @@ def pathset_of(t, h, interface, mesh, delta_max, gamma_max, loading, relaxations
                    loading.array("delta"), loading.array("P"), loading.array("a"),
                    loading.array("U"), loading.array("joined"), relaxations, stats, views,
                    loading.array("V"), loading.array("p"), cavity,
-                   None if uniform is None else float(uniform), float(gamma_edge))
+                   None if uniform is None else float(uniform))
 
 
 def G_reached(relaxations, surface=None):

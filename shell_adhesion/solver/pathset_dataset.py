@@ -153,7 +153,6 @@ def to_dataset(ps: PathSet) -> xr.Dataset:
         **{a: getattr(ps, f) for f, a in _ATTRS.items()})
     if ps.uniform is not None:      # the even arc the set was meshed with (solver.request)
         attrs["uniform_arc_over_R"] = float(ps.uniform)
-    attrs["gamma_edge_hat"] = float(ps.gamma_edge)     # the edge force's gamma (solver.edge)
     return xr.Dataset(data, attrs=attrs)
 
 
@@ -172,7 +171,6 @@ def from_dataset(ds: xr.Dataset) -> PathSet:
         kw["cavity"] = Cavity(**json.loads(ds.attrs["cavity"]))
     if "uniform_arc_over_R" in ds.attrs:
         kw["uniform"] = float(ds.attrs["uniform_arc_over_R"])
-    kw["gamma_edge"] = float(ds.attrs.get("gamma_edge_hat", 0.0))
     return PathSet(relaxations=_relaxations_of(ds), stats=json.loads(ds.attrs["stats"]),
                    views=_views_of(ds), **kw)
 

@@ -181,3 +181,4 @@ def test_an_index_another_run_is_still_creating_reads_as_no_catalogue(tmp_path):
     assert run._held_by_index(plan, tmp_path / "cat") == 0
     with Catalogue(tmp_path / "cat") as cat:           # a creator finishes the job
         assert cat.candidates(plan.shells[0].key) == []
+

@@ -189,7 +189,7 @@ class Catalogue:
             self.db.close()         # another run is creating it: nothing is there yet
             raise FileNotFoundError(f"no catalogue at {self.dir} (its index is being created)")
         if create:
-            self.db.execute("PRAGMA journal_mode=WAL")
+            _journal_wal(self.db)
             self.db.execute("PRAGMA synchronous=FULL")
             with self._write():
                 for statement in _SCHEMA.split(";"):
@@ -526,6 +526,21 @@ def format_entries(rows) -> str:
 
 class CorruptIndex(ValueError):
     """The index file of a catalogue folder is not a readable catalogue index."""
+
+
+def _journal_wal(db) -> None:
+    """Put the index in WAL mode.  Another run creating the index at the same moment holds
+    the lock this needs, and SQLite's busy timeout does not wait for it ("database is
+    locked" at once): retried every 50 ms, for at most TIMEOUT_S."""
+    deadline = time.monotonic() + TIMEOUT_S
+    while True:
+        try:
+            db.execute("PRAGMA journal_mode=WAL")
+            return
+        except sqlite3.OperationalError as e:
+            if "locked" not in str(e) or time.monotonic() > deadline:
+                raise
+            time.sleep(0.05)
 
 
 def check_index(directory) -> None:

@@ -45,6 +45,7 @@ def main(argv):
         layers = len(thickness_layers(t / R, mesh_spec(mesh))) - 1 if t < R else 0
         solved[mesh] = (mesh, ps.stats["relaxation_family"], layers, int(d.ndof), P,
                         time.perf_counter() - t0)
+        print("solved", *solved[mesh], flush=True)
     rows = [solved[m] for m in meshes]
     ref = rows[-1][4]
     last = [r[4] for r in rows[-3:]][::-1]

@@ -222,11 +222,15 @@ def test_error_bars_beside_every_number(solved):
     error estimate of solver.error_bars from the same shell on the next two coarser meshes
     (the observed order where the three converge, beside it as "<name>_order")."""
     from shell_adhesion.solver.error_bars import (error_bar, observed_order,
-                                                   refines_through_thickness)
+                                                   refines_through_thickness, rule)
     out = solved.to_dict(curves=True)
     observable = refines_through_thickness(solved.input.t_mm / solved.input.R_mm, "coarse")
     assert (solved.coarser.mesh, solved.coarsest.mesh) == ("coarser", "coarsest")
     assert out["provenance"]["error_bars"]["coarser_meshes"] == ["coarser", "coarsest"]
+    # the companions relax contact fronts of the answer's kind (solver.error_bars)
+    family = solved.pathset.stats["relaxation_family"]
+    assert family in ("corner", "midside")
+    assert {c.stats["relaxation_family"] for c in (solved.coarser, solved.coarsest)} == {family}
     for po, (_, _, c1), c2, c3 in zip(out["pull_off"], solved.adhesion,
                                       solved.coarser_pull_off, solved.coarsest_pull_off):
         for group, name, key in (("fixed_load", "P_N", "P_star"), ("fixed_grips", "delta_mm",
@@ -239,6 +243,7 @@ def test_error_bars_beside_every_number(solved):
                                         rel=1e-6)
             order = observed_order(value, coarser, coarsest, observable)
             assert (po[group][f"{name}_order"] is None) == bool(np.isnan(order))
+            assert po[group][f"{name}_rule"] == rule(value, coarser, coarsest, observable)
             assert 0 < err < 0.1 * abs(value)      # coarse mesh: a few per cent
         assert po["eta_error"] > 0 and "a0_mm_error" in po
     errors = out["loading"]["P_N_error"]

@@ -40,7 +40,10 @@ def flat_punch_G(start: State, s: State) -> float:
     return (start.P - s.P) ** 2 / (4 * np.pi * start.a ** 2 * k)
 
 
-def relaxation_starts(loading: LoadingPath, capmesh: CapMesh):
+FAMILIES = ("corner", "midside")
+
+
+def relaxation_starts(loading: LoadingPath, capmesh: CapMesh, family: str = None):
     """Loaded states to relax: one per contact radius, all ending on the same node type.
 
     A state ending on a midside node holds part of the next edge, so its energy does not
@@ -48,7 +51,10 @@ def relaxation_starts(loading: LoadingPath, capmesh: CapMesh):
     Where the contact front is not monotone (a node touches before the one inside it),
     the state with the gap is skipped and the one that closes it is used.  The states
     whose front is whole form two families, ending on corners or on midside nodes; the
-    larger family is used, never a mix.
+    larger family is used (`family`: that one, "corner" or "midside"), never a mix.
+    The two converge to one value from different sides on coarse meshes (thin shell t/R
+    0.1: P* 0.7 % apart on the coarse mesh), so an error bar's coarser meshes use the
+    answer's family (`start_family`; study.case).
     """
     families = {True: [], False: []}
     for s in loading.events:
@@ -56,7 +62,19 @@ def relaxation_starts(loading: LoadingPath, capmesh: CapMesh):
         if m > 0 and set(range(max(0, m - 3), m + 1)) <= set(s.held):
             families[bool(capmesh.outer_corner[m])].append(s)
     corner, midside = families[True], families[False]
+    if family is not None:
+        if family not in FAMILIES:
+            raise InputError(f"family: {family!r} must be one of {', '.join(FAMILIES)}")
+        return corner if family == "corner" else midside
     return corner if len(corner) >= len(midside) else midside
+
+
+def start_family(starts, capmesh: CapMesh):
+    """The node type the relaxation starts' contact fronts end on, "corner" or "midside"
+    (`relaxation_starts`; None without starts)."""
+    if not starts:
+        return None
+    return "corner" if capmesh.outer_corner[max(starts[0].held)] else "midside"
 
 
 def has_hole(state: State) -> bool:
@@ -406,7 +424,8 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
                 settings: Settings = Settings(), relax_paths: bool = True,
                 progress=None, map=None, path_progress=None,
                 material: Material = NEO_HOOKE, cavity: Cavity = OPEN, uniform: float = None,
-                a_stop: float = None, reach=None, known=None, gamma_edge: float = 0.0) -> tuple:
+                a_stop: float = None, reach=None, known=None, gamma_edge: float = 0.0,
+                family: str = None) -> tuple:
     """Loading and relaxation paths of one shell: (PathSet, Discretisation, LoadingPath).
 
     A loading that reaches the element-quality limit (or stalls) before delta_max stops
@@ -424,7 +443,9 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
     the paths this call relaxes are added to it).  `gamma_edge` > 0 (gamma / (C10 R),
     frictionless): every path is relaxed with the adhesive edge force of that gamma
     (solver.edge), so the set answers that gamma exactly and others to first order in the
-    difference (shell_adhesion.energy).
+    difference (shell_adhesion.energy).  `family` ("corner" or "midside") picks the
+    node type the relaxed contact fronts end on (`relaxation_starts`; None: the larger);
+    the set's stats say which (`relaxation_family`).
     """
     if not (isinstance(gamma_max, (int, float)) and math.isfinite(gamma_max) and gamma_max > 0):
         raise InputError(f"gamma_max: {shown(gamma_max)} must be a finite number > 0 (gamma/(C10 R))")
@@ -432,9 +453,10 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
     d, loading = solve_loading(t, h, interface, mesh, delta_max, settings, progress, material,
                                cavity, stop_at_limit=True, uniform=uniform, a_stop=a_stop)
     t1 = time.perf_counter()
-    relaxations = ()
+    relaxations, used = (), None
     if relax_paths:
-        starts = relaxation_starts(loading, d.capmesh)
+        starts = relaxation_starts(loading, d.capmesh, family)
+        used = start_family(starts, d.capmesh)
         reaches = [1.0 if reach is None else float(reach(s)) for s in starts]
         last = len(starts) - 1
         done = {}               # the paths `known` already holds (views: the last one's)
@@ -469,7 +491,7 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
                  assembly_s=loading.timer.assembly,
                  linear_solve_s=loading.timer.factor + loading.timer.solve,
                  loading_s=t1 - t0, relaxation_s=t2 - t1,
-                 timing=timing_stats(loading.timer, relaxations))
+                 timing=timing_stats(loading.timer, relaxations), relaxation_family=used)
     return pathset_of(t, h, interface, mesh, delta_max, gamma_max, loading, relaxations,
                       stats, loading_views(d, loading), cavity, cavity_lift(d),
                       uniform), d, loading

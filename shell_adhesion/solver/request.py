@@ -287,14 +287,15 @@ def next_fit(ps: PathSet, fit: Fit, request: Request):
 def solve_request(t: float, h: float, request: Request, gamma_max: float,
                   interface: str = "no_slip", mesh: str = "default",
                   settings: Settings = Settings(), material: Material = NEO_HOOKE,
-                  cavity: Cavity = OPEN, map=None, progress=None, path_progress=None):
+                  cavity: Cavity = OPEN, map=None, progress=None, path_progress=None,
+                  family: str = None):
     """The paths of one shell fitted to `request`: (PathSet, Discretisation, LoadingPath).
 
     Solves with `initial_fit`, then again as `next_fit` says (at most MAX_ROUNDS solves;
     paths already relaxed on the same mesh are not solved again).  `gamma_max` is the
     largest gamma / (C10 R) the set serves; the rest as `solver.case.solve_paths`.  The
     set's stats gain `fit` (the even arc, the loading's contact radius target, the solves,
-    the re-meshings and the paths taken further).
+    the re-meshings and the paths taken further); `family` as in `solve_paths`.
     """
     cap = Cap(t, h)
     fit = initial_fit(cap, request)
@@ -304,7 +305,7 @@ def solve_request(t: float, h: float, request: Request, gamma_max: float,
                                      relax_paths=bool(request.gammas), progress=progress,
                                      map=map, path_progress=path_progress, material=material,
                                      cavity=cavity, uniform=fit.uniform, a_stop=fit.a_stop,
-                                     reach=fit.reach_of, known=known)
+                                     reach=fit.reach_of, known=known, family=family)
         following = next_fit(ps, fit, request) if request.gammas else None
         if following is None:
             break

@@ -175,10 +175,12 @@ def _request(inp: CaseInput, gamma_max) -> Request:
                            else inp.delta_max_mm / inp.R_mm)
 
 
-def _companions(inp: CaseInput, gamma_max: float, g_hats, on_mesh=None):
+def _companions(inp: CaseInput, gamma_max: float, g_hats, on_mesh=None, family=None):
     """The shell on the next COMPANIONS coarser meshes of the family, each fitted to the
-    same request, with its pull-off per gamma (None where its paths do not give one);
-    ``on_mesh()`` after each (progress)."""
+    same request and relaxed from contact fronts ending on the answer's node type
+    (`family`, solver.case.relaxation_starts: the two types converge from different sides,
+    so a mix measures no order), with its pull-off per gamma (None where its paths do not
+    give one); ``on_mesh()`` after each (progress)."""
     out = []
     mesh = inp.mesh
     for _ in range(COMPANIONS):
@@ -186,7 +188,7 @@ def _companions(inp: CaseInput, gamma_max: float, g_hats, on_mesh=None):
         ps, _, _ = solve_request(inp.t_mm / inp.R_mm, inp.h_mm / inp.R_mm,
                                  _request(inp, gamma_max if g_hats else None), gamma_max,
                                  inp.interface, mesh,
-                                 material=inp.material, cavity=inp.cavity)
+                                 material=inp.material, cavity=inp.cavity, family=family)
         got = answers(ps, g_hats) if g_hats else {}
         out.append((ps, tuple(None if isinstance(got[g], Exception) else got[g][1]
                               for g in g_hats),
@@ -249,7 +251,8 @@ def _solve(inp: CaseInput, progress: bool, error_bars: bool = True) -> CaseResul
             bar.set_description("error bars: coarser meshes")
             bar.unit = "mesh"
             bar.reset(COMPANIONS)
-        companions = _companions(inp, gamma_max, g_hats, bar.update) if error_bars else []
+        companions = (_companions(inp, gamma_max, g_hats, bar.update,
+                                  ps.stats.get("relaxation_family")) if error_bars else [])
     t3 = time.perf_counter()
     answered = [gh for g, gh in zip(inp.gamma_J_m2, g_hats) if g in {a[0] for a in adhesion}]
     pick = lambda pos: tuple(pos[g_hats.index(gh)] for gh in answered)

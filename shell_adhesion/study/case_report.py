@@ -11,7 +11,7 @@ import xarray as xr
 from shell_adhesion.cube import CURVES, PULL_OFF     # the cube's names, units and long names
 from shell_adhesion import theory
 from shell_adhesion.solver.error_bars import (curve_error, error_bar, observed_order,
-                                               refines_through_thickness)
+                                               refines_through_thickness, rule)
 from shell_adhesion.solver.scaling import energy_mJ, force_N, length_mm
 
 from .a0_note import a0_note
@@ -51,7 +51,7 @@ def _values(result):
     coarsest = dict(zip(answered, result.coarsest_pull_off or ()))
     refused = dict(result.refused)
     conv = dict(force=F, length=L)
-    observable = refines_through_thickness(inp.t_mm / R, inp.mesh)
+    observable = order_observable(result)
 
     def dimensional(po, g):
         if po is None:
@@ -81,9 +81,23 @@ def _values(result):
                 values[f"{k}_error"] = float(error_bar(values[k], x2, x3, observable))
                 values[f"{k}_order"] = (float(observed_order(values[k], x2, x3, observable))
                                         if x3 is not None else np.nan)
+                values[f"{k}_rule"] = rule(values[k], x2, x3, observable)
         values["jkr_P_star"] = theory.jkr_P_star_N(R, g)
         adhesion.append((g, values, curve))
     return loading, relaxations, adhesion
+
+
+def order_observable(result) -> bool:
+    """Whether the answer's mesh and its two coarser companions form a family whose
+    observed order is usable: each step adds layers through the thickness
+    (`refines_through_thickness`) and all three relax contact fronts ending on the same
+    node type (corner or midside, solver.case.relaxation_starts; unknown counts as the
+    same)."""
+    inp = result.input
+    families = {ps.stats.get("relaxation_family")
+                for ps in (result.pathset, result.coarser, result.coarsest) if ps is not None}
+    return (refines_through_thickness(inp.t_mm / inp.R_mm, inp.mesh)
+            and len(families - {None}) <= 1)
 
 
 # -- JSON ------------------------------------------------------------------------------
@@ -157,8 +171,9 @@ _JSON_NAMES = {"P_star": ("fixed_load", "P_N"), "delta_star": ("fixed_load", "de
 
 def _pull_off_dict(g, v) -> dict:
     """One gamma's pull-off: its status ("ok", or "out of range" with the reason and no
-    values); with error bars, "<name>_error" beside each "<name>" and "<name>_order", the
-    order observed on three meshes (None: order 1 assumed; solver.error_bars)."""
+    values); with error bars, "<name>_error" beside each "<name>", "<name>_order", the
+    order observed on three meshes (None: order 1 assumed; solver.error_bars), and
+    "<name>_rule", the rule in words (`solver.error_bars.rule`)."""
     out = {"gamma_J_m2": g, "status": v["status"]}
     if v["reason"]:         # not answered, or the fixed grips not (PullOff.note)
         out["reason"] = v["reason"]
@@ -168,9 +183,10 @@ def _pull_off_dict(g, v) -> dict:
     for k, (group, name) in _JSON_NAMES.items():
         where = out[group] if group else out
         where[name] = _num(v[k])
-        for extra in ("error", "order"):
+        for extra in ("error", "order", "rule"):
             if f"{k}_{extra}" in v:
-                where[f"{name}_{extra}"] = _num(v[f"{k}_{extra}"])
+                x = v[f"{k}_{extra}"]
+                where[f"{name}_{extra}"] = x if extra == "rule" else _num(x)
     out["jkr_P_star_N"] = _num(v["jkr_P_star"])
     return out
 
@@ -263,6 +279,10 @@ def as_dataset(result) -> xr.Dataset:
                 data[f"{k}_order"] = ("gamma", np.array([v[f"{k}_order"] for _, v, _ in adhesion]),
                                       _attrs("1", f"order of convergence of {k} observed on "
                                                   "three meshes (NaN: order 1 assumed)"))
+                data[f"{k}_rule"] = ("gamma", np.array([v[f"{k}_rule"] for _, v, _ in adhesion],
+                                                       dtype=object),
+                                     _attrs("1", f"the rule of {k}'s error estimate "
+                                                 "(solver.error_bars.rule)"))
         data["status"] = ("gamma", np.array([v["status"] for _, v, _ in adhesion], dtype=object),
                           _attrs("1", "evaluation status of the gamma (ok or out of range)"))
         data["reason"] = ("gamma", np.array([v["reason"] for _, v, _ in adhesion], dtype=object),

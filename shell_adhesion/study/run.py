@@ -34,7 +34,7 @@ from shell_adhesion.catalogue.store import INDEX
 from shell_adhesion.cube import DIMS
 from shell_adhesion.solver.case import (cavity_lift, loading_views, pathset_of,
                                         relaxation_starts, relaxation_task, solve_loading,
-                                        start_key, timing_stats)
+                                        start_family, start_key, timing_stats)
 from shell_adhesion.solver.geometry import Cap
 from shell_adhesion.solver.request import fit_stats, initial_fit, next_fit
 from shell_adhesion.solver.cavity import OPEN
@@ -133,7 +133,8 @@ def loading_task(t, h, interface, mesh, delta_max, settings, source_sha256=None,
     light = replace(loading, states=tuple(replace(s, x=s.x[:0], dx_ddelta=None)
                                           for s in loading.states))
     info = dict(dofs=int(d.ndof), elements=int(d.capmesh.mesh.nelements),
-                loading_s=time.perf_counter() - t0)
+                loading_s=time.perf_counter() - t0,
+                relaxation_family=start_family(starts, d.capmesh))
     if cavity.closed:
         info["cavity_lift"] = cavity_lift(d)
     return light, starts, info, loading_views(d, loading)

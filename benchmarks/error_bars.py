@@ -1,0 +1,75 @@
+"""Benchmark: are the error bars honest and useful on a shell?  (issue 39, item 4)
+
+Run: python benchmarks/error_bars.py R_MM T_MM H_MM C10_MPA GAMMA_J_M2 [ANSWER [MESH ...]]
+     (default: the answer on the default mesh; meshes coarser coarse default fine, the
+     last the reference)
+     e.g. python benchmarks/error_bars.py 15 1.5 11.25 0.5 20      (the thin shell of issue 39)
+          python benchmarks/error_bars.py 20 3 20 0.3 30           (the paper's base shell)
+
+Solves the shell (no_slip) on the answer's mesh as `solve_case` fits it to the request,
+then on the other meshes relaxed from contact fronts ending on the answer's node type (as
+`solve_case` solves its error-bar companions; `--family larger` instead: each mesh picks
+its own, the rule before), and prints per mesh: the node type, element layers through the thickness, dofs, P* [N], the
+error bar the tool gives that mesh's answer from its two coarser companions (the rule:
+observed order p with factor 1.25, or order 1 assumed with factor 3; solver.error_bars),
+the true error (distance to the reference, the last mesh), and bar / true error (at most 3
+is useful, at least 1 honest).  Then the wall times.
+"""
+import sys
+import time
+
+import numpy as np
+
+from shell_adhesion.solver.error_bars import error_bar, observed_order, refines_through_thickness
+from shell_adhesion.solver.mesh import mesh_spec, thickness_layers
+from shell_adhesion.solver.request import Request, answers, gamma_bucket, solve_request
+from shell_adhesion.solver.scaling import force_N, gamma_hat
+
+
+def main(argv):
+    own = "--family" in argv and argv[argv.index("--family") + 1] == "larger"
+    argv = [a for i, a in enumerate(argv) if "--family" not in argv[max(0, i - 1):i + 1]]
+    R, t, h, C10, gamma = (float(v) for v in argv[:5])
+    answer = argv[5] if len(argv) > 5 else "default"
+    meshes = argv[6:] or ["coarser", "coarse", "default", "fine"]
+    g = gamma_hat(gamma, C10, R)
+    top = gamma_bucket(g)
+    solved, family = {}, None
+    for mesh in [answer] + [m for m in meshes if m != answer]:
+        t0 = time.perf_counter()
+        ps, d, _ = solve_request(t / R, h / R, Request.serving(top), top, "no_slip", mesh,
+                                 family=None if own else family)
+        family = family or ps.stats["relaxation_family"]
+        got = answers(ps, [g])[g]
+        P = np.nan if isinstance(got, Exception) else float(force_N(got[1].P_star, C10, R))
+        layers = len(thickness_layers(t / R, mesh_spec(mesh))) - 1 if t < R else 0
+        solved[mesh] = (mesh, ps.stats["relaxation_family"], layers, int(d.ndof), P,
+                        time.perf_counter() - t0)
+        print("solved", *solved[mesh], flush=True)
+    rows = [solved[m] for m in meshes]
+    ref = rows[-1][4]
+    last = [r[4] for r in rows[-3:]][::-1]
+    p_last = float(observed_order(*last)) if len(rows) >= 3 else np.nan
+    extrapolated = (last[0] + (last[0] - last[1]) / (2 ** p_last - 1)
+                    if np.isfinite(p_last) else np.nan)
+    print(f"R {R:g} mm, t {t:g} mm, h {h:g} mm, C10 {C10:g} MPa, gamma {gamma:g} J/m^2 "
+          f"(gamma/(C10 R) {g:.4g}); reference: the {rows[-1][0]} mesh; Richardson from "
+          f"the last three meshes: {extrapolated:.5f} N (order {p_last:.2f})")
+    print(f"{'mesh':9s} {'fronts':>7s} {'layers':>6s} {'dofs':>6s} {'P* [N]':>10s} {'bar [N]':>9s} "
+          f"{'rule':>10s} {'true [N]':>9s} {'ratio':>6s} {'to extr.':>8s} {'wall [s]':>8s}")
+    for i, (mesh, fam, layers, dofs, P, wall) in enumerate(rows):
+        bar, rule = np.nan, ""
+        if i >= 2:
+            ok = refines_through_thickness(t / R, mesh)
+            args = (P, rows[i - 1][4], rows[i - 2][4], ok)
+            bar = float(error_bar(*args))
+            p = float(observed_order(*args))
+            rule = f"p {p:.2f}" if np.isfinite(p) else "order 1 x3"
+        true = abs(P - ref) if i < len(rows) - 1 else np.nan
+        print(f"{mesh:9s} {fam:>7s} {layers:6d} {dofs:6d} {P:10.5f} {bar:9.2g} {rule:>10s} "
+              f"{true:9.2g} {bar / true if true else np.nan:6.2f} "
+              f"{bar / abs(P - extrapolated):8.2f} {wall:8.0f}")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])

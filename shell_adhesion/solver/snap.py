@@ -79,6 +79,10 @@ class SnapSettings:
     ds_max: float = 0.01       # largest arc step
     dz_share: float = 0.3      # largest change of any outer gap per step, in thicknesses
     ds_min: float = 1e-10      # a failure below this step ends the path
+    ds_corner: float = 1e-6    # a step this short is taken even if the tangent turns by
+    #                            more than cos_min allows: a corner of the path (the
+    #                            penalty's onset, a point touching at the snap), not a
+    #                            branch jump (the energy balance of the path checks it)
     grow: float = 1.5          # step growth after an easy step
     easy: int = 4              # ... one of at most this many Newton iterations
     cos_min: float = 0.95      # least cosine between the tangents of consecutive states
@@ -250,7 +254,7 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
         try:
             xn, dn, Kn, rn, it = cn.correct(c, x, delta, t, ds)
             tn = cn.tangent_at(Kn, c, t)
-            if cn.dot(*tn, *t) < s.cos_min:
+            if cn.dot(*tn, *t) < s.cos_min and ds > s.ds_corner:
                 raise ConvergenceError("the tangent turned by more than "
                                        f"{math.degrees(math.acos(s.cos_min)):.0f} degrees")
         except ConvergenceError as err:
@@ -323,12 +327,13 @@ def trace_shell(t: float, h: float, mesh: str, delta_max: float, uniform: float 
 
 def log_slope(path: SnapPath, lo: float, hi: float) -> tuple:
     """(slope, drift) of ln P against ln delta over lo <= delta <= hi (units of R) on the
-    path's last stable part (after its last displacement-controlled jump): the slope of
+    path's last branch (after the last fold at which delta turns from falling to rising:
+    beyond the snap, the mirror-buckled branch from its lower fold on): the slope of
     the least-squares line, and the slope over the upper half of the range (in ln delta)
     minus that over the lower half.  Raises ValueError with fewer than 3 states per half."""
     D, P = path.array("delta"), path.array("P")
-    jumps = path.jumps()
-    start = jumps[-1].i_to if jumps else 0
+    turns = [i for i in range(1, len(D) - 1) if D[i] <= D[i - 1] and D[i] < D[i + 1]]
+    start = turns[-1] if turns else 0
     D, P = D[start:], P[start:]
     m = (D >= lo) & (D <= hi)
     mid = 0.5 * (math.log(lo) + math.log(hi))

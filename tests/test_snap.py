@@ -1,0 +1,96 @@
+"""The loading of a thin deep shell through its snap (issue 42, items 1 and 2; DESIGN.md
+section 10, "Thin shells past buckling"): frictionless, no adhesion, h = R, traced by arc
+length (solver.snap).  Pressed by a plane the shell first flattens (Reissner: P = 16 C10
+t^2 delta / R for an incompressible neo-Hookean), then the flat region inverts into a
+dimple (Pogorelov's mirror buckling): the contact is a ring and P grows about as
+delta^(1/2).  Under displacement control the inversion is a jump; the path passes it.
+
+Default tier: t/R = 0.02 on the 'coarser' mesh to delta = 6.5 t (about 10 s): the snap,
+the ring after it, the energy balance, the Reissner regime.  `slow`: t/R = 0.01 and 0.02
+on the coarse mesh to 10 t (about 30 s and 60 s): the Pogorelov slope over 5 t to 10 t.
+Measured (coarse): slope 0.574 (drift -0.028) for t/R 0.01, 0.58 for 0.02; coarser,
+t/R 0.02: jump at delta = 6.27 t, P from 1.558e-3 to 6.25e-4 C10 R^2, energy 3.0e-5."""
+import numpy as np
+import pytest
+
+from shell_adhesion.errors import InputError
+from shell_adhesion.solver.snap import log_slope, trace_shell
+
+REISSNER = 0.15     # the brief's band around 16 C10 t^2 delta / R, delta <= t / 2
+ENERGY = 1e-4       # |work of P - U - Pi| / max U along the path
+
+
+def _reissner_ratios(path, T):
+    """P / (16 T^2 delta) for 0.05 t <= delta <= t / 2 on the first branch (below 0.05 t
+    the penalty's onset, 1e-5 R, is more than 1 % of delta)."""
+    D, P = path.array("delta"), path.array("P")
+    first = np.flatnonzero(np.diff(D) < 0)
+    end = first[0] if len(first) else len(D)
+    m = (D[:end] >= 0.05 * T) & (D[:end] <= 0.5 * T)
+    return P[:end][m] / (16 * T * T * D[:end][m])
+
+
+def _energy_miss(path):
+    W, U, Pi = path.work(), path.array("U"), path.array("Pi")
+    return float(np.abs(W - U - Pi).max() / U.max())
+
+
+@pytest.fixture(scope="module")
+def snap():
+    return trace_shell(0.02, 1.0, "coarser", 0.13)
+
+
+def test_thin_shell_loading_passes_the_snap_to_a_ring(snap):
+    T = 0.02
+    _, path = snap
+    assert path.ended_by == ""
+    jumps = path.jumps()
+    assert jumps, "no fold of delta: the flattened shell did not snap"
+    j = jumps[0]
+    # the load drops at the jump (measured: to 0.40 of it), and after it the contact is
+    # a ring only, with the apex inverted by more than a thickness
+    assert j.P_to < 0.5 * j.P_from
+    after = path.states[j.i_to]
+    assert after.ring and len(after.radii) == 1 and after.apex_gap > T
+    assert 5 * T < j.delta < 8 * T
+    ring = path.first_ring(0.1 * T)
+    assert ring is not None and ring < j.i_to
+    # every state's contact set is ordered radii: r_in < r_out, runs apart
+    for s in path.states:
+        r = np.array(s.radii).ravel()
+        assert np.all(np.diff(r) >= 0)
+
+
+def test_thin_shell_loading_conserves_energy_through_the_snap(snap):
+    _, path = snap
+    assert _energy_miss(path) <= ENERGY
+
+
+def test_thin_shell_loading_starts_as_reissner(snap):
+    ratios = _reissner_ratios(snap[1], 0.02)
+    assert len(ratios) >= 3
+    assert np.all(np.abs(ratios - 1) <= REISSNER)
+
+
+def test_thin_shell_loading_refuses_bad_input():
+    with pytest.raises(InputError, match="t/R"):
+        trace_shell(0.001, 1.0, "coarser", 0.01)
+    with pytest.raises(InputError, match="h/R"):
+        trace_shell(0.01, 0.01, "coarser", 0.005)
+    with pytest.raises(InputError, match="delta_max"):
+        trace_shell(0.02, 1.0, "coarser", 1.5)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("T", [0.01, 0.02])
+def test_reissner_then_pogorelov(T):
+    _, path = trace_shell(T, 1.0, "coarse", 10 * T)
+    assert path.ended_by == ""
+    ratios = _reissner_ratios(path, T)
+    assert len(ratios) >= 3 and np.all(np.abs(ratios - 1) <= REISSNER)
+    slope, drift = log_slope(path, 5 * T, 10 * T)
+    print(f"t/R {T}: slope {slope:.4f}, drift {drift:+.4f}, first ring (apex > 0.1 t) at "
+          f"delta = {path.states[path.first_ring(0.1 * T)].delta / T:.3f} t")
+    assert 0.35 <= slope <= 0.65
+    assert path.jumps() and path.first_ring(0.1 * T) is not None
+    assert _energy_miss(path) <= ENERGY

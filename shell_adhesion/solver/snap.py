@@ -50,7 +50,7 @@ class PenaltyContact:
     here: the plane pushes) and slope.  `stiffness` in C10 / R, `onset` / R."""
 
     stiffness: float = 1e4
-    onset: float = 1e-5
+    onset: float = 1e-4
 
     @property
     def delta_c(self) -> float:     # the scale `arclength` steps by: the onset
@@ -87,10 +87,16 @@ class SnapSettings:
     easy: int = 4              # ... one of at most this many Newton iterations
     cos_min: float = 0.95      # least cosine between the tangents of consecutive states
     max_iter: int = 12         # Newton iterations per corrector
+    tol: float = 1e-9          # force residual relative to the largest reaction (at the
+    #                            snap's fold of t/R 0.02, coarser mesh, 1e-10 is below the
+    #                            round-off floor of the residual: 2e-13 to 7e-12 of 1.5e-3)
     max_states: int = 4000     # states on the whole path
     stiffness: float = 1e4     # the contact penalty (PenaltyContact), C10 / R
-    onset: float = 1e-5        # ... and its onset / R (1e-7 leaves a corner in the path
-    #                            at the snap of t/R 0.02 that steps of 1e-10 cannot pass)
+    onset: float = 1e-4        # ... and its onset / R: the contact force rises as the
+    #                            square of the penetration over this depth.  Sharper, the
+    #                            path has corners the continuation cannot pass (t/R 0.02,
+    #                            coarse: 1e-5 stalls where the inner contact disc vanishes
+    #                            on the unstable branch, 1e-6 at the snap's fold)
 
 
 @dataclass(frozen=True, eq=False)
@@ -237,7 +243,7 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
     s = settings
     law = PenaltyContact(s.stiffness, s.onset)
     cn = _Continuation(Interface(d, law), "frictionless",
-                       ArcSettings(max_iter=s.max_iter))
+                       ArcSettings(tol=s.tol, max_iter=s.max_iter))
     c = constraints(d, "frictionless", [])
     outer_z = d.uz(d.capmesh.outer[cn.candidates])
     dz_max = s.dz_share * d.capmesh.cap.t
@@ -252,8 +258,10 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
     while len(states) < s.max_states:
         ds = min(ds, s.ds_max, dz_max / (np.abs(t[0][outer_z]).max() + abs(t[1])))
         try:
-            xn, dn, Kn, rn, it = cn.correct(c, x, delta, t, ds)
-            tn = cn.tangent_at(Kn, c, t)
+            xn, dn, Kn, rn, it = _correct(cn, c, x, delta, t, ds)
+            L = math.sqrt(cn.dot(xn - x, dn - delta, xn - x, dn - delta))
+            chord = ((xn - x) / L, (dn - delta) / L)
+            tn = cn.tangent_at(Kn, c, chord)
             if cn.dot(*tn, *t) < s.cos_min and ds > s.ds_corner:
                 raise ConvergenceError("the tangent turned by more than "
                                        f"{math.degrees(math.acos(s.cos_min)):.0f} degrees")
@@ -263,9 +271,16 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
                 ended_by = f"step below {s.ds_min:g} at delta = {delta:.6g} R ({err})"
                 break
             continue
+        slope = None
+        if cn.dot(*tn, *chord) < s.cos_min:
+            # a corner (a step shorter than ds_corner taken): the tangent K^-1 dr/ddelta is
+            # there dominated by a mode whose sign flips as the path passes it (a
+            # bifurcation); the path goes on along the chord, which follows the branch
+            tn = chord
+            slope = (chord[1], (rim_load(d, rn) - rim_load(d, r)) / L)
         x, delta, K, r, t = xn, dn, Kn, rn, tn
         now = time.perf_counter()
-        states.append(_state(cn, x, delta, K, r, t, it, now - clock))
+        states.append(_state(cn, x, delta, K, r, t, it, now - clock, slope))
         clock = now
         if progress is not None:
             progress(states[-1])
@@ -277,12 +292,65 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
     return SnapPath(tuple(states), ended_by, cn.timer)
 
 
-def _state(cn, x, delta, K, r, t, it, seconds) -> SnapState:
+def _correct(cn, c, x0, d0, t, ds):
+    """Equilibrium on the hyperplane t . (y - y0) = ds: (x, delta, K, r, iterations), as
+    `arclength._Continuation.correct`, with each bordered Newton step refined once
+    against the whole bordered system.  Near a fold or a bifurcation the free block of
+    the tangent is nearly singular and block elimination loses the step's accuracy (the
+    residual stalls at 1e-11 of P at the snap of t/R 0.02); one refinement restores it."""
+    s, d = cn.s, cn.d
+    tx, td = t
+    x = x0 + ds * tx
+    delta = d0 + ds * td
+    x[c.rimz] = -delta
+    history = []
+    size = math.sqrt(cn.dot(x0, d0, x0, d0))
+    tw = (tx * cn.weight)[c.free]
+    for it in range(s.max_iter + 1):
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            K, r = cn.linearise(x)
+        if not (np.all(np.isfinite(r)) and np.all(np.isfinite(K.data))):
+            raise ConvergenceError("non-finite residual")
+        res = np.abs(r[c.free]).max()
+        goal = s.tol * np.abs(r[c.fixed]).max() + s.atol * d.force_scale
+        g = cn.dot(tx, td, x - x0, delta - d0) - ds
+        history.append(res)
+        if res <= goal and abs(g) <= 1e-10 * (abs(ds) + size):
+            return x, delta, K, r, it
+        if it == s.max_iter or (it > 2 and res > 1e3 * history[1]):
+            break
+        lu, dr_dd = cn.factor(K, c)
+        cn.timer.newton_iterations += 1
+        Kff = K[c.free][:, c.free]
+        rhs_r, rhs_g = -r[c.free], -g
+        dx, dd = _bordered(cn, lu, dr_dd, tw, td, rhs_r, rhs_g)
+        # one refinement against [K_ff dr_dd; tw td]
+        e_r = rhs_r - (Kff @ dx + dr_dd * dd)
+        e_g = rhs_g - (tw @ dx + td * dd)
+        ex, ed = _bordered(cn, lu, dr_dd, tw, td, e_r, e_g)
+        x[c.free] += dx + ex
+        delta += dd + ed
+        x[c.rimz] = -delta
+    raise ConvergenceError("corrector did not converge (residuals "
+                           + ", ".join(f"{h:.3g}" for h in history[-3:]) + ")")
+
+
+def _bordered(cn, lu, dr_dd, tw, td, rhs_r, rhs_g):
+    """Solve [K_ff dr_dd; tw td] (dx, dd) = (rhs_r, rhs_g) by block elimination."""
+    a = cn.solve(lu, rhs_r)
+    b = cn.solve(lu, -dr_dd)
+    dd = (rhs_g - tw @ a) / (tw @ b + td)
+    return a + b * dd, dd
+
+
+def _state(cn, x, delta, K, r, t, it, seconds, slope=None) -> SnapState:
     d = cn.d
     runs, radii = contact_set(cn.iface, x)
     apex = float(gaps(d, x, [0])[0])
     return SnapState(float(delta), rim_load(d, r), strain_energy(d, x), cn.iface.energy(x),
-                     runs, radii, apex, it, (float(t[1]), rim_load(d, K @ t[0])), seconds, x.copy())
+                     runs, radii, apex, it,
+                     (float(t[1]), rim_load(d, K @ t[0])) if slope is None else slope,
+                     seconds, x.copy())
 
 
 def ring_arc(delta_max: float) -> float:

@@ -5,11 +5,12 @@ t^2 delta / R for an incompressible neo-Hookean), then the flat region inverts i
 dimple (Pogorelov's mirror buckling): the contact is a ring and P grows about as
 delta^(1/2).  Under displacement control the inversion is a jump; the path passes it.
 
-Default tier: t/R = 0.02 on the 'coarser' mesh to delta = 6.5 t (about 10 s): the snap,
+Default tier: t/R = 0.02 on the 'coarser' mesh to delta = 5 t (7 to 15 s): the snap,
 the ring after it, the energy balance, the Reissner regime.  `slow`: t/R = 0.01 and 0.02
 on the coarse mesh to 10 t (about 30 s and 60 s): the Pogorelov slope over 5 t to 10 t.
-Measured (coarse): slope 0.5748 (drift -0.027) for t/R 0.02; coarser, t/R 0.02: jump at
-delta = 4.38 t, P from 9.05e-4 to 5.00e-4 C10 R^2, energy 2.1e-5 (benchmarks/snap.py).
+Measured (coarse): slope 0.5733 (drift -0.025) for t/R 0.01, 0.5748 (-0.027) for 0.02;
+coarser, t/R 0.02 to 5 t: jump at delta = 4.37 t, P from 9.01e-4 to 4.99e-4 C10 R^2,
+energy 3.6e-5 (benchmarks/snap.py).
 Where the snap falls depends on the contact's regularisation (solver.snap.SnapSettings.
 onset): 6.27 t with an onset of 1e-5 R on the coarser mesh."""
 import numpy as np
@@ -39,7 +40,7 @@ def _energy_miss(path):
 
 @pytest.fixture(scope="module")
 def snap():
-    return trace_shell(0.02, 1.0, "coarser", 0.13)
+    return trace_shell(0.02, 1.0, "coarser", 0.1)
 
 
 def test_thin_shell_loading_passes_the_snap_to_a_ring(snap):
@@ -49,7 +50,7 @@ def test_thin_shell_loading_passes_the_snap_to_a_ring(snap):
     jumps = path.jumps()
     assert jumps, "no fold of delta: the flattened shell did not snap"
     j = jumps[0]
-    # the load drops at the jump (measured: to 0.55 of it, at delta = 4.38 t), and after
+    # the load drops at the jump (measured: to 0.55 of it, at delta = 4.37 t), and after
     # it the contact is a ring only, with the apex inverted by more than a thickness
     assert j.P_to < 0.7 * j.P_from
     after = path.states[j.i_to]

@@ -148,3 +148,69 @@ def test_contact_set_of_a_ring_against_the_closed_form():
     assert r_in == pytest.approx(brentq(z, 0.0, 0.15), abs=1e-6)
     assert r_out == pytest.approx(brentq(z, 0.15, 0.5), abs=1e-6)
     assert edges[0] > 0
+
+
+def _onset(onset, stiffness=1e4):
+    import dataclasses
+    from shell_adhesion.solver.snap import SnapSettings
+    return dataclasses.replace(SnapSettings(), onset=onset, stiffness=stiffness)
+
+
+@pytest.mark.slow
+def test_the_traced_snap_moves_with_the_contact_penalty():
+    """The jump the continuation passes is early, by the contact's softness: t/R 0.02,
+    coarser mesh, onset 1e-4, 7e-5, 5e-5 R: jump at 4.368, 4.607, 4.894 t (the central
+    contact disc at the fold 0.019, 0.056, 0.080 R); the slope after it 0.5826, 0.5826,
+    0.5835.  Nor is it converged in the mesh: at 1e-4 R, 4.368 t on the coarse mesh too,
+    4.859 t on the default.  About four minutes."""
+    T = 0.02
+    for mesh, onset, at, slope in (("coarser", 1e-4, 4.368, 0.5826),
+                                   ("coarser", 7e-5, 4.607, 0.5826),
+                                   ("coarser", 5e-5, 4.894, 0.5835),
+                                   ("coarse", 1e-4, 4.368, None),
+                                   ("default", 1e-4, 4.859, None)):
+        depth = 8 if slope is not None else 6 if mesh == "coarse" else 5
+        _, path = trace_shell(T, 1.0, mesh, depth * T,
+                              settings=_onset(onset))
+        assert path.ended_by == ""
+        (jump,) = path.jumps()
+        print(mesh, onset, jump.delta / T, slope and log_slope(path, 5 * T, 8 * T))
+        assert jump.delta / T == pytest.approx(at, abs=0.01), (mesh, onset)
+        if slope is not None:
+            assert log_slope(path, 5 * T, 8 * T)[0] == pytest.approx(slope, abs=0.005), onset
+
+
+@pytest.mark.slow
+def test_a_sharp_contact_loses_stability_at_the_same_delta_on_refinement():
+    """With a sharp contact (onset 1e-5 R and below) the loading stops at a bifurcation:
+    delta and P stand still while the flattened centre lifts off (the inner edge of the
+    contact moving from the axis outward), and the continuation cannot follow the branch
+    beyond (its steps fall below ds_min).  Where it stops holds across refinements of the
+    contact and of the mesh: the converged snap.  Measured (delta / t), stiffness 1e4
+    C10/R unless stated: coarser 6.2702 (onset 1e-5 R; and 1e5 C10/R from 1e-4 R: the
+    penetration stays within the onset, so only their ratio counts), 6.3253 (3e-6 R),
+    6.3312 (1e-6 R), 6.3341 (1e-6 R, 1e5 C10/R); coarse 6.3281 (3e-6 R).  About five
+    minutes."""
+    T = 0.02
+    stop = {}
+    for mesh, onset, k in (("coarser", 1e-5, 1e4), ("coarser", 1e-4, 1e5),
+                           ("coarser", 3e-6, 1e4), ("coarser", 1e-6, 1e4),
+                           ("coarser", 1e-6, 1e5), ("coarse", 3e-6, 1e4)):
+        _, path = trace_shell(T, 1.0, mesh, 8 * T, settings=_onset(onset, k))
+        assert path.ended_by.startswith("step below"), path.ended_by
+        last = path.states[-1]
+        # the centre has lifted: the contact is rings, the axis off the plane by less
+        # than the penetration's scale (the lifted centre hovers)
+        assert last.ring and abs(last.apex_gap) < 1e-3 * T
+        stop[mesh, onset, k] = last.delta / T
+    print(stop)
+    assert stop["coarser", 1e-4, 1e5] == pytest.approx(stop["coarser", 1e-5, 1e4], abs=1e-3)
+    # each tenfold sharpening moves it less: 0.055 t, 0.006 t, 0.003 t
+    assert abs(stop["coarser", 3e-6, 1e4] - stop["coarser", 1e-5, 1e4]) <= 0.1
+    assert abs(stop["coarser", 1e-6, 1e4] - stop["coarser", 3e-6, 1e4]) <= 0.01
+    assert abs(stop["coarser", 1e-6, 1e5] - stop["coarser", 1e-6, 1e4]) <= 0.005
+    assert abs(stop["coarse", 3e-6, 1e4] - stop["coarser", 3e-6, 1e4]) <= 0.01
+    for key, at in {("coarser", 1e-5, 1e4): 6.270, ("coarser", 3e-6, 1e4): 6.325,
+                    ("coarser", 1e-6, 1e4): 6.331, ("coarser", 1e-6, 1e5): 6.334,
+                    ("coarse", 3e-6, 1e4): 6.328}.items():
+        assert stop[key] == pytest.approx(at, abs=0.01), key

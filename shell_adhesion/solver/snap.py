@@ -26,9 +26,16 @@ outer surface below the plane (by quadrature point), with the radii where the ga
 zero.  The work of P equals U + Pi (strain energy plus the penalty's): the path is
 conservative.  Every loop is bounded (`SnapSettings`).
 
-Where the snap falls depends on the regularisation: the flattened shell's loss of
-stability is sensitive to how softly its contact edge and centre are held (t/R 0.02,
-coarser mesh: delta 4.38 t with an onset of 1e-4 R, 6.27 t with 1e-5 R).
+Where the snap falls depends on the regularisation, not on the mesh.  The flattened
+centre carries almost no pressure, and the penalty's slope vanishes with the pressure, so
+a soft contact lets the centre lift early: the shell's loss of stability (a bifurcation
+where the centre lifts off) becomes a fold reached sooner, as an imperfection would make
+it.  t/R 0.02, h/R 1: with an onset of 1e-4, 7e-5, 5e-5 R the traced jump is at 4.37,
+4.61, 4.89 t (coarse and coarser meshes within 0.005 t at 1e-4 R); with a sharp contact
+(1e-5, 3e-6, 1e-6 R) the loading stops at 6.27, 6.325, 6.331 t, where delta and P stand
+still while the centre lifts, and the continuation cannot pass: the converged snap is
+there, about 6.33 t, and the jump traced with the default onset comes 31 % early.  The
+branch after the jump hardly depends on it (Pogorelov slope 0.583 at all three onsets).
 """
 from dataclasses import dataclass, field
 import math
@@ -97,10 +104,11 @@ class SnapSettings:
     max_states: int = 4000     # states on the whole path
     stiffness: float = 1e4     # the contact penalty (PenaltyContact), C10 / R
     onset: float = 1e-4        # ... and its onset / R: the contact force rises as the
-    #                            square of the penetration over this depth.  Sharper, the
-    #                            path has corners the continuation cannot pass (t/R 0.02,
-    #                            coarse: 1e-5 stalls where the inner contact disc vanishes
-    #                            on the unstable branch, 1e-6 at the snap's fold)
+    #                            square of the penetration over this depth.  The sharpest
+    #                            the continuation passes the snap with (t/R 0.02; 4e-5
+    #                            turns back along the path, 3e-5 and below stop where the
+    #                            centre lifts off); it makes the jump early (31 % at t/R
+    #                            0.02): module docstring
 
 
 @dataclass(frozen=True, eq=False)

@@ -26,15 +26,17 @@ outer surface below the plane (by quadrature point), with the radii where the ga
 zero.  The work of P equals U + Pi (strain energy plus the penalty's): the path is
 conservative.  Every loop is bounded (`SnapSettings`).
 
-Where the snap falls depends on the regularisation, not on the mesh.  The flattened
+Where the snap falls depends on the regularisation.  The flattened
 centre carries almost no pressure, and the penalty's slope vanishes with the pressure, so
 a soft contact lets the centre lift early: the shell's loss of stability (a bifurcation
 where the centre lifts off) becomes a fold reached sooner, as an imperfection would make
-it.  t/R 0.02, h/R 1: with an onset of 1e-4, 7e-5, 5e-5 R the traced jump is at 4.37,
-4.61, 4.89 t (coarse and coarser meshes within 0.005 t at 1e-4 R); with a sharp contact
-(1e-5, 3e-6, 1e-6 R) the loading stops at 6.27, 6.325, 6.331 t, where delta and P stand
-still while the centre lifts, and the continuation cannot pass: the converged snap is
-there, about 6.33 t, and the jump traced with the default onset comes 31 % early.  The
+it.  t/R 0.02, h/R 1, coarser mesh: with an onset of 1e-4, 7e-5, 5e-5 R the traced jump
+is at 4.37, 4.61, 4.89 t (at 1e-4 R: 4.37 t on the coarse mesh, 4.86 t on the default);
+with a sharp contact (1e-5, 3e-6, 1e-6 R) the loading stops at 6.27, 6.325, 6.331 t
+(3e-6 R: coarse 6.328, default 6.339 t), where delta and P stand still while the centre
+lifts, and the continuation cannot pass: the converged snap is there, about 6.33 t, and
+the jump traced with the default onset comes 31 % early on the coarse mesh.  Only
+stiffness / onset counts (the penetration stays within the onset).  The
 branch after the jump hardly depends on it (Pogorelov slope 0.583 at all three onsets).
 """
 from dataclasses import dataclass, field

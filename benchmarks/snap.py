@@ -7,9 +7,11 @@ state, delta / t, P / (C10 R^2), P over Reissner's 16 C10 t^2 delta / R, the con
 displacement-controlled jumps, the first ring, the log-slope d ln P / d ln delta over
 5 t to 10 t on the last branch, the energy balance and the totals.
 Run: python benchmarks/snap.py [--t 0.02] [--mesh coarse] [--delta-max 10] [--every 20]
-[--stiffness 1e4] [--onset 1e-4] [--tol 1e-9] [--figure docs/figures/thin_shell_snap.png [--sharp 3e-6]] (--sharp: the loading
-with that onset / R drawn too, to where its continuation stops; --delta-max in thicknesses t; the contact penalty's
-stiffness in C10 / R and onset in R, solver.snap.SnapSettings)
+[--stiffness 1e4] [--onset 1e-4] [--tol 1e-9]
+[--figure docs/figures/thin_shell_snap.png [--sharp 3e-6]]
+(--delta-max in thicknesses t; the contact penalty's stiffness in C10 / R and onset in R,
+solver.snap.SnapSettings; --sharp: the loading with that onset / R drawn too, to where
+its continuation stops)
 """
 import argparse
 import dataclasses
@@ -104,7 +106,8 @@ def figure(d, path, T, out, onset, sharp=None, sharp_onset=None):
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 4.2))
     if jumps:
         j = jumps[0]
-        ax.plot(D[:j.i_from + 1], P[:j.i_from + 1], "C0-", label=f"stable loading (contact onset {onset:g} R)")
+        ax.plot(D[:j.i_from + 1], P[:j.i_from + 1], "C0-",
+                label=f"stable loading (contact onset {onset:g} R)")
         ax.plot(D[j.i_from:j.i_to], P[j.i_from:j.i_to], "C0--", lw=1,
                 label="unstable branch (arc length)")
         ax.plot(D[j.i_to - 1:], P[j.i_to - 1:], "C0-")

@@ -17,8 +17,8 @@ pytest.importorskip("pydata_sphinx_theme")
 
 DOCS = REPO / "docs"
 PAGES = {"index", "getting-started", "one-shell", "fit", "map", "studies", "notebook", "materials",
-         "cavities", "adhesion-range", "figures-gallery", "scaling-out", "domain", "validation",
-         "performance", "theory", "api"}
+         "cavities", "adhesion-range", "thin-shells", "figures-gallery", "scaling-out",
+         "domain", "validation", "performance", "theory", "api"}
 
 # what a user's page must not hold: the machinery of our development
 NOT_FOR_USERS = {

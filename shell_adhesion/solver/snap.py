@@ -1,0 +1,427 @@
+"""Loading through folds: the frictionless loading without adhesion continued by arc
+length, with a contact set of any shape along the meridian (a disc, a ring, a disc and a
+ring).
+
+Dimensionless as the solver (lengths / R, forces / (C10 R^2), energies / (C10 R^3));
+delta > 0 approach, P > 0 compression.
+
+A thin deep shell pressed by a plane first flattens (Reissner, P = 16 C10 t^2 delta / R),
+then its flat region inverts into a dimple (Pogorelov's mirror buckling): the apex lifts
+off and the contact becomes a ring, P growing about as delta^(1/2).  Under displacement
+control the transition is a snap.  `solver.path.load` cannot pass it: it follows delta
+and keeps the axis node on the plane.  Here the path is traced by the cohesive paths'
+pseudo-arclength continuation (`solver.arclength._Continuation`: y = (x, delta), one
+bordered Newton per step on t . (y - y_k) = ds), so it passes the folds of P(delta).
+
+Contact is the cohesive interface's penalty alone (`PenaltyContact`, no adhesion): below
+the plane the surface is pushed back at `stiffness` C10 / R per unit penetration, its
+slope rising from 0 over the first `onset` / R; the force is never tensile.  A point of the
+outer surface joins the contact where its gap closes and leaves where its pressure falls
+to zero, evaluated at the edge's quadrature points: node-wise unilateral contact of the
+Q2 surface chatters (solver.cohesive: a node at the edge of a held zone carries a tensile
+reaction under a compressive pressure; on a flattened thin shell the axis node's reaction
+turns tensile while the pressure is compressive everywhere, and a ring's inner edge node
+joins and leaves in a closed cycle).  The contact set of a state is the runs of the
+outer surface below the plane (by quadrature point), with the radii where the gap crosses
+zero.  The work of P equals U + Pi (strain energy plus the penalty's): the path is
+conservative.  Every loop is bounded (`SnapSettings`).
+
+Where the snap falls depends on the regularisation.  The flattened
+centre carries almost no pressure, and the penalty's slope vanishes with the pressure, so
+a soft contact lets the centre lift early: the shell's loss of stability (a bifurcation
+where the centre lifts off) becomes a fold reached sooner, as an imperfection would make
+it.  t/R 0.02, h/R 1, coarser mesh: with an onset of 1e-4, 7e-5, 5e-5 R the traced jump
+is at 4.37, 4.61, 4.89 t (at 1e-4 R: 4.37 t on the coarse mesh, 4.86 t on the default);
+with a sharp contact (1e-5, 3e-6, 1e-6 R) the loading stops at 6.27, 6.325, 6.331 t
+(3e-6 R: coarse 6.328, default 6.339 t), where delta and P stand still while the centre
+lifts, and the continuation cannot pass: the converged snap is there, about 6.33 t, and
+the jump traced with the default onset comes 31 % early on the coarse mesh.  Only
+stiffness / onset counts (the penetration stays within the onset).  The
+branch after the jump hardly depends on it (Pogorelov slope 0.583 at all three onsets).
+"""
+from dataclasses import dataclass, field
+import math
+import time
+
+import numpy as np
+
+from shell_adhesion.errors import ConvergenceError, InputError
+
+from .arclength import ArcSettings, _Continuation
+from .cohesive import Interface
+from .contact import constraints, gaps, rim_load
+from .forms import Discretisation, discretise, strain_energy
+from .geometry import T_MIN, Cap, check_cap, check_delta_max
+from .mesh import cap_mesh, mesh_spec
+from .linear import Timer
+
+
+@dataclass(frozen=True)
+class PenaltyContact:
+    """Non-penetration without adhesion, as a law of the gap g / R for
+    `solver.cohesive.Interface`: energy, stress (> 0 pulls towards the plane, so < 0
+    here: the plane pushes) and slope.  `stiffness` in C10 / R, `onset` / R."""
+
+    stiffness: float = 1e4
+    onset: float = 1e-4
+
+    @property
+    def delta_c(self) -> float:     # the scale `arclength` steps by: the onset
+        return self.onset
+
+    @property
+    def reach(self) -> float:       # beyond the plane nothing acts
+        return 0.0
+
+    def __call__(self, g):
+        k, e = self.stiffness, self.onset
+        g = np.asarray(g, dtype=float)
+        h = np.clip(g, -e, 0.0)
+        deep = np.minimum(g + e, 0.0)
+        energy = -k * h ** 3 / (6 * e) + k * (deep * (deep / 2 - e / 2))
+        stress = -k * h ** 2 / (2 * e) + k * deep
+        slope = np.where(g < -e, k, -k * h / e)
+        return energy, stress, slope
+
+
+@dataclass(frozen=True)
+class SnapSettings:
+    """Continuation controls; lengths in units of R."""
+
+    ds_first: float = 1e-4     # first arc step
+    ds_max: float = 0.01       # largest arc step
+    dz_share: float = 0.3      # largest change of any outer gap per step, in thicknesses
+    ds_min: float = 1e-10      # a failure below this step ends the path
+    ds_corner: float = 1e-6    # a step this short is taken even if the tangent turns by
+    #                            more than cos_min allows: a corner of the path (the
+    #                            penalty's onset, a point touching at the snap), not a
+    #                            branch jump (the energy balance of the path checks it)
+    grow: float = 1.5          # step growth after an easy step
+    easy: int = 4              # ... one of at most this many Newton iterations
+    cos_min: float = 0.95      # least cosine between the tangents of consecutive states
+    max_iter: int = 12         # Newton iterations per corrector
+    tol: float = 1e-9          # force residual relative to the largest reaction (at the
+    #                            snap's fold of t/R 0.02, coarser mesh, 1e-10 is below the
+    #                            round-off floor of the residual: 2e-13 to 7e-12 of 1.5e-3)
+    max_states: int = 4000     # states on the whole path
+    stiffness: float = 1e4     # the contact penalty (PenaltyContact), C10 / R
+    onset: float = 1e-4        # ... and its onset / R: the contact force rises as the
+    #                            square of the penetration over this depth.  The sharpest
+    #                            the continuation passes the snap with (t/R 0.02; 4e-5
+    #                            turns back along the path, 3e-5 and below stop where the
+    #                            centre lifts off); it makes the jump early (31 % at t/R
+    #                            0.02): module docstring
+
+
+@dataclass(frozen=True, eq=False)
+class SnapState:
+    """A converged state of the loading."""
+
+    delta: float               # approach / R
+    P: float                   # rim load / (C10 R^2), > 0 compression
+    U: float                   # strain energy / (C10 R^3)
+    Pi: float                  # contact penalty energy / (C10 R^3)
+    intervals: tuple           # runs of the surface below the plane: ((first, last) edge, ...)
+    radii: tuple               # the deformed radii / R where they meet the plane
+    apex_gap: float            # height / R of the apex above the plane (< 0 pressed in)
+    iterations: int            # Newton iterations of the corrector that found it
+    slope: tuple               # (d delta, dP) per unit arc length, along the path
+    seconds: float = 0.0       # wall time of the step that found it
+    x: np.ndarray = field(default=None, repr=False)
+
+    @property
+    def ring(self) -> bool:
+        """The apex is off the plane while the shell touches it: a ring."""
+        return bool(self.radii) and self.radii[0][0] > 0.0
+
+    @property
+    def contact(self) -> str:
+        """The contact set as radii / R, e.g. 'disc 0-0.21' or 'ring 0.30-0.34'."""
+        return " + ".join(("disc" if r0 == 0.0 else "ring") + f" {r0:.4g}-{r1:.4g}"
+                          for r0, r1 in self.radii) or "none"
+
+
+@dataclass(frozen=True)
+class Jump:
+    """The displacement-controlled jump from a fold at which delta turns back: the state
+    `i_from` at delta has no neighbour beyond it, and the shell jumps at the same delta to
+    the path's next stable part (between states `i_to - 1` and `i_to`, P linear there)."""
+
+    delta: float
+    P_from: float
+    P_to: float
+    contact_from: str
+    contact_to: str
+    i_from: int
+    i_to: int
+
+
+@dataclass(frozen=True, eq=False)
+class SnapPath:
+    """The loading traced by arc length, in path order."""
+
+    states: tuple
+    ended_by: str              # "" if it reached delta_max
+    timer: Timer
+
+    def array(self, name):
+        return np.array([getattr(s, name) for s in self.states])
+
+    def first_ring(self, lift: float = 0.0):
+        """Index of the first state whose contact set starts with a ring and whose apex
+        is more than `lift` / R above the plane, or None."""
+        return next((i for i, s in enumerate(self.states) if s.ring and s.apex_gap > lift),
+                    None)
+
+    def jumps(self) -> tuple:
+        """The displacement-controlled jumps: one per fold at which delta turns back and
+        is passed again later on the path."""
+        D, P = self.array("delta"), self.array("P")
+        out = []
+        for i in range(1, len(D) - 1):
+            if not (D[i] >= D[i - 1] and D[i] > D[i + 1]):
+                continue
+            j = next((k for k in range(i + 2, len(D)) if D[k] >= D[i] > D[k - 1]), None)
+            if j is None:
+                continue
+            w = (D[i] - D[j - 1]) / (D[j] - D[j - 1])
+            out.append(Jump(float(D[i]), float(P[i]), float((1 - w) * P[j - 1] + w * P[j]),
+                            self.states[i].contact, self.states[j].contact, i, j))
+        return tuple(out)
+
+    def work(self) -> np.ndarray:
+        """The work of P from the first state to each (integral of P d delta, C10 R^3),
+        along the path through its folds: each step a cubic Hermite curve in the (delta, P)
+        plane (scaled by their ranges) through its two states with their path tangents,
+        parametrised by its chord; 3-point Gauss is exact for it."""
+        D, P = self.array("delta"), self.array("P")
+        scale = np.array([np.ptp(D), np.ptp(P)])
+        if len(D) < 2 or not np.all(scale > 0):
+            return np.zeros(len(D))
+        y = np.stack([D, P], 1) / scale
+        t = np.array([s.slope for s in self.states]) / scale
+        t /= np.linalg.norm(t, axis=1)[:, None]
+        xi, wq = np.polynomial.legendre.leggauss(3)
+        u = 0.5 * (xi + 1)
+        h = np.stack([2 * u ** 3 - 3 * u ** 2 + 1, u ** 3 - 2 * u ** 2 + u,
+                      3 * u ** 2 - 2 * u ** 3, u ** 3 - u ** 2])
+        dh = np.stack([6 * u ** 2 - 6 * u, 3 * u ** 2 - 4 * u + 1,
+                       6 * u - 6 * u ** 2, 3 * u ** 2 - 2 * u])
+        W = np.zeros(len(D))
+        for k in range(len(D) - 1):
+            chord = y[k + 1] - y[k]
+            L = float(np.hypot(*chord))
+            ctrl = np.stack([y[k], L * t[k], y[k + 1], L * t[k + 1]])
+            W[k + 1] = W[k] + 0.5 * float(np.sum(wq * (h.T @ ctrl[:, 1]) * (dh.T @ ctrl[:, 0])))
+        return W * scale[0] * scale[1]
+
+
+def contact_set(iface: Interface, x) -> tuple:
+    """(edges, radii): runs of the outer surface below the plane, as (first, last) outer
+    edges (from the apex; each edge spans three outer nodes) and the deformed radii / R
+    where the surface crosses the plane at each run's ends (linear in the gap between
+    neighbouring quadrature points; 0 at the axis)."""
+    r, z, _ = iface._points(x)                  # (n_edges, Q), along the meridian
+    n_q = r.shape[1]
+    r, z = r.ravel(), z.ravel()
+    inside = z < 0.0
+    edges, radii = [], []
+    k = 0
+    while k < len(z):
+        if not inside[k]:
+            k += 1
+            continue
+        a = k
+        while k + 1 < len(z) and inside[k + 1]:
+            k += 1
+        b = k
+        r0 = 0.0 if a == 0 else float(r[a - 1] + (r[a] - r[a - 1]) * z[a - 1] / (z[a - 1] - z[a]))
+        r1 = (float(r[b]) if b + 1 == len(z)
+              else float(r[b] + (r[b + 1] - r[b]) * z[b] / (z[b] - z[b + 1])))
+        edges.append((a // n_q, b // n_q))
+        radii.append((r0, r1))
+        k += 1
+    return tuple(edges), tuple(radii)
+
+
+def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = SnapSettings(),
+                  progress=None) -> SnapPath:
+    """The frictionless loading without adhesion from delta = 0 to delta_max / R, by arc
+    length through every fold (module docstring).
+
+    Ends (`SnapPath.ended_by`) at delta_max (""), or when a step fails below
+    settings.ds_min, or at settings.max_states states.  `progress(state)` is called after
+    each state if given."""
+    if not (math.isfinite(delta_max) and delta_max > 0):
+        raise ValueError(f"delta_max: {delta_max!r} must be a finite number > 0 (units of R)")
+    s = settings
+    law = PenaltyContact(s.stiffness, s.onset)
+    cn = _Continuation(Interface(d, law), "frictionless",
+                       ArcSettings(tol=s.tol, max_iter=s.max_iter))
+    c = constraints(d, "frictionless", [])
+    outer_z = d.uz(d.capmesh.outer[cn.candidates])
+    dz_max = s.dz_share * d.capmesh.cap.t
+    x = np.zeros(d.ndof)
+    delta = 0.0
+    K, r = cn.linearise(x)
+    t = cn.tangent_at(K, c)
+    states = [_state(cn, x, delta, K, r, t, 0, 0.0)]
+    ds = s.ds_first
+    ended_by = f"state limit: {s.max_states} states"
+    clock = time.perf_counter()
+    while len(states) < s.max_states:
+        ds = min(ds, s.ds_max, dz_max / (np.abs(t[0][outer_z]).max() + abs(t[1])))
+        try:
+            xn, dn, Kn, rn, it = _correct(cn, c, x, delta, t, ds)
+            L = math.sqrt(cn.dot(xn - x, dn - delta, xn - x, dn - delta))
+            chord = ((xn - x) / L, (dn - delta) / L)
+            tn = cn.tangent_at(Kn, c, chord)
+            if cn.dot(*tn, *t) < s.cos_min and ds > s.ds_corner:
+                raise ConvergenceError("the tangent turned by more than "
+                                       f"{math.degrees(math.acos(s.cos_min)):.0f} degrees")
+        except ConvergenceError as err:
+            ds *= 0.5
+            if ds < s.ds_min:
+                ended_by = f"step below {s.ds_min:g} at delta = {delta:.6g} R ({err})"
+                break
+            continue
+        slope = None
+        if cn.dot(*tn, *chord) < s.cos_min:
+            # a corner (a step shorter than ds_corner taken): the tangent K^-1 dr/ddelta is
+            # there dominated by a mode whose sign flips as the path passes it (a
+            # bifurcation); the path goes on along the chord, which follows the branch
+            tn = chord
+            slope = (chord[1], (rim_load(d, rn) - rim_load(d, r)) / L)
+        x, delta, K, r, t = xn, dn, Kn, rn, tn
+        now = time.perf_counter()
+        states.append(_state(cn, x, delta, K, r, t, it, now - clock, slope))
+        clock = now
+        if progress is not None:
+            progress(states[-1])
+        if delta >= delta_max:
+            ended_by = ""
+            break
+        if it <= s.easy:
+            ds *= s.grow
+    return SnapPath(tuple(states), ended_by, cn.timer)
+
+
+def _correct(cn, c, x0, d0, t, ds):
+    """Equilibrium on the hyperplane t . (y - y0) = ds: (x, delta, K, r, iterations), as
+    `arclength._Continuation.correct`, with each bordered Newton step refined once
+    against the whole bordered system.  Near a fold or a bifurcation the free block of
+    the tangent is nearly singular and block elimination loses the step's accuracy (the
+    residual stalls at 1e-11 of P at the snap of t/R 0.02); one refinement restores it."""
+    s, d = cn.s, cn.d
+    tx, td = t
+    x = x0 + ds * tx
+    delta = d0 + ds * td
+    x[c.rimz] = -delta
+    history = []
+    size = math.sqrt(cn.dot(x0, d0, x0, d0))
+    tw = (tx * cn.weight)[c.free]
+    for it in range(s.max_iter + 1):
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            K, r = cn.linearise(x)
+        if not (np.all(np.isfinite(r)) and np.all(np.isfinite(K.data))):
+            raise ConvergenceError("non-finite residual")
+        res = np.abs(r[c.free]).max()
+        goal = s.tol * np.abs(r[c.fixed]).max() + s.atol * d.force_scale
+        g = cn.dot(tx, td, x - x0, delta - d0) - ds
+        history.append(res)
+        if res <= goal and abs(g) <= 1e-10 * (abs(ds) + size):
+            return x, delta, K, r, it
+        if it == s.max_iter or (it > 2 and res > 1e3 * history[1]):
+            break
+        lu, dr_dd = cn.factor(K, c)
+        cn.timer.newton_iterations += 1
+        Kff = K[c.free][:, c.free]
+        rhs_r, rhs_g = -r[c.free], -g
+        dx, dd = _bordered(cn, lu, dr_dd, tw, td, rhs_r, rhs_g)
+        # one refinement against [K_ff dr_dd; tw td]
+        e_r = rhs_r - (Kff @ dx + dr_dd * dd)
+        e_g = rhs_g - (tw @ dx + td * dd)
+        ex, ed = _bordered(cn, lu, dr_dd, tw, td, e_r, e_g)
+        x[c.free] += dx + ex
+        delta += dd + ed
+        x[c.rimz] = -delta
+    raise ConvergenceError("corrector did not converge (residuals "
+                           + ", ".join(f"{h:.3g}" for h in history[-3:]) + ")")
+
+
+def _bordered(cn, lu, dr_dd, tw, td, rhs_r, rhs_g):
+    """Solve [K_ff dr_dd; tw td] (dx, dd) = (rhs_r, rhs_g) by block elimination."""
+    a = cn.solve(lu, rhs_r)
+    b = cn.solve(lu, -dr_dd)
+    dd = (rhs_g - tw @ a) / (tw @ b + td)
+    return a + b * dd, dd
+
+
+def _state(cn, x, delta, K, r, t, it, seconds, slope=None) -> SnapState:
+    d = cn.d
+    runs, radii = contact_set(cn.iface, x)
+    apex = float(gaps(d, x, [0])[0])
+    return SnapState(float(delta), rim_load(d, r), strain_energy(d, x), cn.iface.energy(x),
+                     runs, radii, apex, it,
+                     (float(t[1]), rim_load(d, K @ t[0])) if slope is None else slope,
+                     seconds, x.copy())
+
+
+def ring_arc(delta_max: float) -> float:
+    """Arc length / R from the apex to be meshed evenly for a loading to delta_max / R:
+    past the mirror-buckled ring, which sits near sqrt(2 delta) R (the inverted cap's
+    edge), with a quarter and 0.05 R to spare."""
+    return 1.25 * math.sqrt(2.0 * delta_max) + 0.05
+
+
+T_MIN_SNAP = 0.005     # the thinnest shell whose loading alone is traced, t / R
+
+
+def loading_cap(t: float, h: float) -> Cap:
+    """The cap t / R, h / R for a loading alone: the supported domain's rules
+    (geometry.check_cap), except that t / R may go down to T_MIN_SNAP (below the domain's
+    T_MIN: the energy method is not validated there, the loading is)."""
+    check_cap(max(t, T_MIN) if math.isfinite(t) else t, h)
+    if t < T_MIN:
+        if not t >= T_MIN_SNAP:
+            raise InputError(f"t/R: {t:g} is outside the loading's domain t/R >= {T_MIN_SNAP:g}")
+        if not h > t:
+            raise InputError(f"h/R: {h:g} must be > t ({t:g})")
+        cap = object.__new__(Cap)
+        object.__setattr__(cap, "t", float(t))
+        object.__setattr__(cap, "h", float(h))
+        return cap
+    return Cap(t, h)
+
+
+def trace_shell(t: float, h: float, mesh: str, delta_max: float, uniform: float = None,
+                settings: SnapSettings = SnapSettings(), progress=None):
+    """(discretisation, SnapPath) of the shell t / R, h / R on the named mesh, evenly
+    meshed out to `uniform` of arc / R (default `ring_arc(delta_max)`), loaded to
+    delta_max / R (`trace_loading`).  A shell or delta_max outside the supported domain
+    raises InputError (a ValueError)."""
+    cap = loading_cap(t, h)
+    check_delta_max(delta_max, h, t_over_R=t)
+    uniform = ring_arc(delta_max) if uniform is None else uniform
+    d = discretise(cap_mesh(cap, mesh_spec(mesh, uniform)))
+    return d, trace_loading(d, delta_max, settings, progress)
+
+
+def log_slope(path: SnapPath, lo: float, hi: float) -> tuple:
+    """(slope, drift) of ln P against ln delta over lo <= delta <= hi (units of R) on the
+    path's last branch (after the last fold at which delta turns from falling to rising:
+    beyond the snap, the mirror-buckled branch from its lower fold on): the slope of
+    the least-squares line, and the slope over the upper half of the range (in ln delta)
+    minus that over the lower half.  Raises ValueError with fewer than 3 states per half."""
+    D, P = path.array("delta"), path.array("P")
+    turns = [i for i in range(1, len(D) - 1) if D[i] <= D[i - 1] and D[i] < D[i + 1]]
+    start = turns[-1] if turns else 0
+    D, P = D[start:], P[start:]
+    m = (D >= lo) & (D <= hi)
+    mid = 0.5 * (math.log(lo) + math.log(hi))
+    lower, upper = m & (np.log(D) <= mid), m & (np.log(D) >= mid)
+    if min(lower.sum(), upper.sum()) < 3:
+        raise ValueError(f"log_slope: {int(m.sum())} states in delta/R {lo:g} to {hi:g} "
+                         "on the last branch; need 3 in each half")
+    fit = [np.polyfit(np.log(D[k]), np.log(P[k]), 1)[0] for k in (m, lower, upper)]
+    return float(fit[0]), float(fit[2] - fit[1])

@@ -8,7 +8,9 @@ all read from the results netCDF (never from the solver).
                                     written from it
 
 Every file is written atomically (shell_adhesion.atomic).  A run whose cube has the content of
-the one already there, with every file the manifest lists present, rewrites nothing.
+the one already there, with every file the manifest lists present, rewrites nothing.  Drawn
+files are kept in the catalogue under `products_key` (the cube's content, the drawing code,
+the formats; catalogue.results): a cube of the same content elsewhere gets copies of them.
 """
 from dataclasses import dataclass, field
 import hashlib
@@ -18,12 +20,17 @@ import time
 
 import xarray as xr
 
+from shell_adhesion import __version__
 from shell_adhesion.atomic import write_text_atomic
+from shell_adhesion.catalogue import results as stored
 
-from .figures import RUN_FORMATS, write_figures
 from .slices import base_cavity, base_material
 from .summary import summary
 from .tables import FORMATS, cases_table, comparison_table, render
+
+RUN_FORMATS = ("png",)      # what `shell-adhesion run` draws; PDF on request (`plot --format`)
+# the code that draws the products: a change in it draws them again
+DRAWING_SOURCES = ("analysis/*.py", "cube.py", "energy.py", "theory.py")
 
 
 def tables_dir(results_nc) -> Path:
@@ -47,6 +54,7 @@ class Products:
     skipped: dict = field(default_factory=dict)
     seconds: dict = field(default_factory=dict)
     kept: bool = False      # the files of an earlier run of the same cube, not rewritten
+    copied: bool = False    # copied from the catalogue (drawn before from the same content)
 
 
 def manifest_path(results_nc) -> Path:
@@ -130,7 +138,55 @@ def write_products(results_nc, formats=RUN_FORMATS) -> Products:
     t1 = time.perf_counter()
     p.tables = write_tables(ds, tables_dir(path))
     t2 = time.perf_counter()
+    from .figures import write_figures      # matplotlib only when drawing (about 0.5 s)
     p.figures, p.skipped = write_figures(base_cavity(ds), figures_dir(path), formats)
     t3 = time.perf_counter()
     p.seconds = dict(read=t1 - t0, tables=t2 - t1, figures=t3 - t2, total=t3 - t0)
+    return p
+
+
+def products_key(digest: str, formats=RUN_FORMATS) -> str:
+    """The catalogue key of the products of a cube of content `digest`
+    (study.dataset.content_sha256) in `formats`: with this package's version, the source
+    of the code that draws them (DRAWING_SOURCES) and matplotlib's version."""
+    from importlib.metadata import version
+    root = Path(__file__).resolve().parent.parent
+    h = hashlib.sha256(repr((digest, tuple(formats), __version__,
+                             version("matplotlib"))).encode())
+    for pattern in DRAWING_SOURCES:
+        for p in sorted(root.glob(pattern)):
+            h.update(str(p.relative_to(root)).encode() + b"\0" + p.read_bytes() + b"\0")
+    return h.hexdigest()
+
+
+def _groups(results_nc) -> dict:
+    return {"tables": tables_dir(results_nc), "figures": figures_dir(results_nc)}
+
+
+def catalogued_products(results_nc, digest: str, catalogue_dir,
+                        formats=RUN_FORMATS) -> Products:
+    """The tables and figures of the cube at `results_nc` (content `digest`): copied from
+    the catalogue at `catalogue_dir` if it holds them for this content and drawing code
+    (each file's digest checked; Products.copied), else drawn (write_products) and kept
+    there.  A catalogue that cannot keep them costs nothing but the next copy."""
+    t0 = time.perf_counter()
+    key = products_key(digest, formats)
+    found = stored.fetch_products(catalogue_dir, key)
+    groups = _groups(results_nc)
+    if found is not None:
+        files, skipped = found
+        p = Products(skipped=skipped, copied=True)
+        for rel, data in sorted(files.items()):
+            group, name = rel.split("/", 1)
+            written = stored.write_bytes_atomic(groups[group] / name, data)
+            (p.tables if group == "tables" else p.figures).append(written)
+        p.seconds = dict(copy=time.perf_counter() - t0, total=time.perf_counter() - t0)
+        return p
+    p = write_products(results_nc, formats)
+    files = {f"{group}/{Path(f).relative_to(groups[group]).as_posix()}": f
+             for group, made in (("tables", p.tables), ("figures", p.figures)) for f in made}
+    try:
+        stored.store_products(catalogue_dir, key, files, p.skipped)
+    except OSError:
+        pass
     return p

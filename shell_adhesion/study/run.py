@@ -47,8 +47,9 @@ from . import dataset, interrupt, sharing
 from .config import StudyError, load_study, validate
 from .keys import relaxation_part, solver_source_sha256
 from .plan import Plan, Shell, make_plan, served_key
-from shell_adhesion.analysis.products import (Products, kept_products, record_products,
-                                              recorded_inputs, write_products)
+from shell_adhesion.analysis.products import (Products, catalogued_products, kept_products,
+                                              record_products, recorded_inputs)
+from shell_adhesion.catalogue import results as stored
 from .cost import estimate_s, shell_size
 from .progress import Progress, path_eta
 
@@ -659,11 +660,15 @@ def _execute(plan, out_dir, output, catalogue, scheduler, client, show, workers,
     try:
         run_id = cat.start_run(study.name, study.source, study.sha256, output,
                                solver.__version__)
-        # every set stored and the cube on disk built from these very inputs: keep it
-        # (the stored files are hashed only if the manifest records inputs at all)
-        inputs = _inputs(plan, cat) if recorded_inputs(output) else None
+        # every set stored and the cube on disk built from these very inputs: keep it;
+        # built elsewhere from them (kept in the catalogue): copy it and its products
+        inputs = _inputs(plan, cat)
         products = kept_products(output, inputs, key="inputs_sha256")
         if products is not None:
+            return _kept_run(plan, output, products, cat, run_id, t0)
+        cube = stored.fetch_cube(cat.dir, inputs)
+        if cube is not None:
+            products = _copy_cube(output, *cube, inputs, cat.dir)
             return _kept_run(plan, output, products, cat, run_id, t0)
         served, reused, missing = {}, [], []
         for s in plan.all_shells:
@@ -711,11 +716,12 @@ def _execute(plan, out_dir, output, catalogue, scheduler, client, show, workers,
             inputs = _inputs(plan, cat)
         if products is None:
             dataset.write(ds, output)
-            try:
-                products = write_products(output)
-                record_products(output, digest, products, inputs)
-            except Exception as e:      # the cube is written; a drawing bug must not lose it
-                products = Products(skipped={"tables and figures": _reason("products", e)})
+            if inputs is not None:
+                try:
+                    stored.store_cube(cat.dir, inputs, output, digest)
+                except OSError:         # not kept: the next run into a new folder builds it
+                    pass
+            products = _products(output, digest, inputs, cat.dir)
         elif inputs != recorded_inputs(output):
             record_products(output, digest, products, inputs)
         progress.update("cube", 1, note=str(output))
@@ -776,9 +782,29 @@ def _inputs(plan, cat):
     return dataset.inputs_sha256(plan, entries) if all(entries) else None
 
 
+def _products(output, digest, inputs, catalogue_dir) -> Products:
+    """The tables and figures of the cube written at `output` (content `digest`), copied
+    from the catalogue or drawn (analysis.products.catalogued_products), and the manifest
+    that lets a rerun keep them."""
+    try:
+        products = catalogued_products(output, digest, catalogue_dir)
+        record_products(output, digest, products, inputs)
+    except Exception as e:      # the cube is written; a drawing bug must not lose it
+        products = Products(skipped={"tables and figures": _reason("products", e)})
+    return products
+
+
+def _copy_cube(output, data: bytes, digest: str, inputs: str, catalogue_dir):
+    """Write the cube `data` (content `digest`) kept in the catalogue for `inputs` to
+    `output`, then its products."""
+    stored.write_bytes_atomic(output, data)
+    return _products(output, digest, inputs, catalogue_dir)
+
+
 def _kept_run(plan, output, products, cat, run_id, t0) -> Outcome:
     """The Outcome of a run whose every path set is stored and whose cube on disk was
-    built from the same inputs (study.dataset.inputs_sha256): nothing is built or written."""
+    built from the same inputs (study.dataset.inputs_sha256), or copied there from the
+    catalogue (_copy_cube): nothing is built."""
     written = _written(output)
     counts = dataset.summary_counts(written)
     code = exit_code(written)
@@ -910,7 +936,9 @@ def summary(outcome: Outcome, ds=None) -> str:
         lines.append(f"  discarded a corrupt catalogue entry: {d}")
     pr = outcome.products
     if pr is not None:
-        kept = " (kept: the cube's content is unchanged)" if pr.kept else ""
+        kept = (" (kept: the cube's content is unchanged)" if pr.kept else
+                " (copied from the catalogue: drawn before from the same cube content)"
+                if pr.copied else "")
         if pr.tables:
             lines.append(f"tables: {len(pr.tables)} files in {pr.tables[0].parent}{kept}")
         if pr.figures:

@@ -8,9 +8,9 @@ all read from the results netCDF (never from the solver).
                                     written from it
 
 Every file is written atomically (shell_adhesion.atomic).  A run whose cube has the content of
-the one already there, with every file the manifest lists present, rewrites nothing.  Drawn
-files are kept in the catalogue under `products_key` (the cube's content, the drawing code,
-the formats; catalogue.results): a cube of the same content elsewhere gets copies of them.
+the one already there, with every file the manifest lists present, rewrites nothing.  A run
+keeps the drawn files in the catalogue under `products_key` (the cube's content, the drawing
+code, the formats; study.run): a cube of the same content elsewhere gets copies of them.
 """
 from dataclasses import dataclass, field
 import hashlib
@@ -22,7 +22,6 @@ import xarray as xr
 
 from shell_adhesion import __version__
 from shell_adhesion.atomic import write_text_atomic
-from shell_adhesion.catalogue import results as stored
 
 from .slices import base_cavity, base_material
 from .summary import summary
@@ -157,36 +156,3 @@ def products_key(digest: str, formats=RUN_FORMATS) -> str:
         for p in sorted(root.glob(pattern)):
             h.update(str(p.relative_to(root)).encode() + b"\0" + p.read_bytes() + b"\0")
     return h.hexdigest()
-
-
-def _groups(results_nc) -> dict:
-    return {"tables": tables_dir(results_nc), "figures": figures_dir(results_nc)}
-
-
-def catalogued_products(results_nc, digest: str, catalogue_dir,
-                        formats=RUN_FORMATS) -> Products:
-    """The tables and figures of the cube at `results_nc` (content `digest`): copied from
-    the catalogue at `catalogue_dir` if it holds them for this content and drawing code
-    (each file's digest checked; Products.copied), else drawn (write_products) and kept
-    there.  A catalogue that cannot keep them costs nothing but the next copy."""
-    t0 = time.perf_counter()
-    key = products_key(digest, formats)
-    found = stored.fetch_products(catalogue_dir, key)
-    groups = _groups(results_nc)
-    if found is not None:
-        files, skipped = found
-        p = Products(skipped=skipped, copied=True)
-        for rel, data in sorted(files.items()):
-            group, name = rel.split("/", 1)
-            written = stored.write_bytes_atomic(groups[group] / name, data)
-            (p.tables if group == "tables" else p.figures).append(written)
-        p.seconds = dict(copy=time.perf_counter() - t0, total=time.perf_counter() - t0)
-        return p
-    p = write_products(results_nc, formats)
-    files = {f"{group}/{Path(f).relative_to(groups[group]).as_posix()}": f
-             for group, made in (("tables", p.tables), ("figures", p.figures)) for f in made}
-    try:
-        stored.store_products(catalogue_dir, key, files, p.skipped)
-    except OSError:
-        pass
-    return p

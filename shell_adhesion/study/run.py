@@ -47,8 +47,9 @@ from . import dataset, interrupt, sharing
 from .config import StudyError, load_study, validate
 from .keys import relaxation_part, solver_source_sha256
 from .plan import Plan, Shell, make_plan, served_key
-from shell_adhesion.analysis.products import (Products, catalogued_products, kept_products,
-                                              record_products, recorded_inputs)
+from shell_adhesion.analysis.products import (RUN_FORMATS, Products, figures_dir,
+                                              kept_products, products_key, record_products,
+                                              recorded_inputs, tables_dir, write_products)
 from shell_adhesion.catalogue import results as stored
 from .cost import estimate_s, shell_size
 from .progress import Progress, path_eta
@@ -782,12 +783,46 @@ def _inputs(plan, cat):
     return dataset.inputs_sha256(plan, entries) if all(entries) else None
 
 
+def _groups(results_nc) -> dict:
+    """Where each group of products of the cube at `results_nc` goes."""
+    return {"tables": tables_dir(results_nc), "figures": figures_dir(results_nc)}
+
+
+def _catalogued_products(results_nc, digest: str, catalogue_dir,
+                        formats=RUN_FORMATS) -> Products:
+    """The tables and figures of the cube at `results_nc` (content `digest`): copied from
+    the catalogue at `catalogue_dir` if it holds them for this content and drawing code
+    (each file's digest checked; Products.copied), else drawn (write_products) and kept
+    there.  A catalogue that cannot keep them costs nothing but the next copy."""
+    t0 = time.perf_counter()
+    key = products_key(digest, formats)
+    found = stored.fetch_products(catalogue_dir, key)
+    groups = _groups(results_nc)
+    if found is not None:
+        files, skipped = found
+        p = Products(skipped=skipped, copied=True)
+        for rel, data in sorted(files.items()):
+            group, name = rel.split("/", 1)
+            written = stored.write_bytes_atomic(groups[group] / name, data)
+            (p.tables if group == "tables" else p.figures).append(written)
+        p.seconds = dict(copy=time.perf_counter() - t0, total=time.perf_counter() - t0)
+        return p
+    p = write_products(results_nc, formats)
+    files = {f"{group}/{Path(f).relative_to(groups[group]).as_posix()}": f
+             for group, made in (("tables", p.tables), ("figures", p.figures)) for f in made}
+    try:
+        stored.store_products(catalogue_dir, key, files, p.skipped)
+    except OSError:
+        pass
+    return p
+
+
 def _products(output, digest, inputs, catalogue_dir) -> Products:
     """The tables and figures of the cube written at `output` (content `digest`), copied
-    from the catalogue or drawn (analysis.products.catalogued_products), and the manifest
+    from the catalogue or drawn (_catalogued_products), and the manifest
     that lets a rerun keep them."""
     try:
-        products = catalogued_products(output, digest, catalogue_dir)
+        products = _catalogued_products(output, digest, catalogue_dir)
         record_products(output, digest, products, inputs)
     except Exception as e:      # the cube is written; a drawing bug must not lose it
         products = Products(skipped={"tables and figures": _reason("products", e)})

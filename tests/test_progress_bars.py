@@ -17,7 +17,7 @@ def test_log_bar_lines_count_totals_and_end_complete(monkeypatch):
     clock = iter(range(0, 1000, 4))         # 4 s between readings
     monkeypatch.setattr(progress.time, "perf_counter", lambda: float(next(clock)))
     out = io.StringIO()
-    with LogBar(10, "relaxation paths", "path", out, every_s=10) as b:
+    with LogBar(10, "relaxation paths", "path", out, every_s=progress.LOG_EVERY_S) as b:
         for _ in range(12):                 # past its total: shown once, complete
             b.update(1)
         b.reset(3)                          # the next stage

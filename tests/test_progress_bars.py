@@ -1,6 +1,7 @@
-"""Progress of `case`, `design` and `map build` outside a terminal, with the FE solve
-replaced by a fake (no FE runs): in a log file each stage shows done/total and ends
-complete; in a notebook the run's stages share one redrawn line; nothing when disabled."""
+"""Progress of `design` (and the case it confirms with) and of `run` / `map build` outside
+a terminal, with the FE solve replaced by a fake (no FE runs): in a log file each stage
+shows done/total and ends complete; in a notebook the run's stages share one redrawn line;
+nothing when disabled."""
 import io
 import re
 from types import SimpleNamespace
@@ -65,9 +66,14 @@ def _fake_solve(monkeypatch, paths=7):
 
 
 def test_case_in_a_log_shows_each_stage_to_its_total(monkeypatch, capsys):
+    """Inside design (progress.logged); alone, a case prints no bar in a log file (a
+    refusal found while solving stays the one line on stderr)."""
     monkeypatch.setattr(progress, "shown", lambda stream=None: False)
     _fake_solve(monkeypatch)
     with pytest.raises(_Done):
+        sa.solve_case(20, 3, 20, 0.3, [30], mesh="coarse", progress=True)
+    assert capsys.readouterr().err == ""
+    with pytest.raises(_Done), progress.logged():
         sa.solve_case(20, 3, 20, 0.3, [30], mesh="coarse", progress=True)
     err = capsys.readouterr().err.splitlines()
     assert err[0].startswith("loading: 0/4 mm") and err[1].startswith("loading: 4/4 mm")
@@ -77,7 +83,7 @@ def test_case_in_a_log_shows_each_stage_to_its_total(monkeypatch, capsys):
 
 def test_case_silent_without_progress(monkeypatch, capsys):
     _fake_solve(monkeypatch)
-    with pytest.raises(_Done):
+    with pytest.raises(_Done), progress.logged():
         sa.solve_case(20, 3, 20, 0.3, [30], mesh="coarse", progress=False)
     assert capsys.readouterr().err == ""
 

@@ -10,7 +10,9 @@ terminal the lines are redrawn in place; in a notebook the running stages share 
 redrawn in place; elsewhere (a log file) a stage's line is printed when it starts, at most
 every `every_s` seconds while it runs, and when it is complete.
 """
+from contextlib import contextmanager
 import sys
+import threading
 import time
 
 
@@ -208,15 +210,32 @@ class LogBar:
 
 
 LOG_EVERY_S = 10.0      # a bar's line in a log file at most this often (as `run`'s stages)
+_logged = threading.local()
+
+
+@contextmanager
+def logged():
+    """Bars made inside the block print a LogBar's lines where they are not seen live (a
+    log file): a long command such as `design` shows its stages there as `run` does.
+    Outside it they print nothing there (`case`: a refusal found while solving stays the
+    one line on stderr)."""
+    before = getattr(_logged, "on", False)
+    _logged.on = True
+    try:
+        yield
+    finally:
+        _logged.on = before
 
 
 def bar(total, desc: str, unit: str, enabled: bool = True, stream=None):
     """A bar on `stream` (stderr by default) when `enabled`: tqdm's (done/total, rate,
-    ETA) when `shown()` (a terminal, a notebook), else a LogBar's lines (a log file).
-    Close it (or use it as a context manager)."""
+    ETA) when `shown()` (a terminal, a notebook); else, inside `logged()`, a LogBar's
+    lines (a log file), and nothing outside it.  Close it (or use it as a context
+    manager)."""
     stream = sys.stderr if stream is None else stream
-    if enabled and not shown(stream):
+    live = enabled and shown(stream)
+    if enabled and not live and getattr(_logged, "on", False):
         return LogBar(total, desc, unit, stream, LOG_EVERY_S)
     from tqdm import tqdm
     return tqdm(total=total, desc=desc, unit=unit, file=stream, leave=False,
-                disable=not enabled)
+                disable=not live)

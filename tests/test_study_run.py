@@ -323,3 +323,49 @@ def test_content_digest_sees_values_not_history(local):
     assert dataset.content_sha256(other) == dataset.content_sha256(ds)
     other["P_star"].values[(0,) * other["P_star"].ndim] *= 1 + 1e-15
     assert dataset.content_sha256(other) != dataset.content_sha256(ds)
+
+
+def test_warm_run_into_a_new_folder_copies_what_the_catalogue_keeps(local, tmp_path,
+                                                                     monkeypatch):
+    """A run into a new folder whose cube was built before from the same inputs copies it
+    and its tables and figures from the catalogue (catalogue.results): nothing decoded,
+    built or drawn.  A kept file altered or truncated is not served: what it stood for is
+    made again, and kept again (a store cut short: tests/test_catalogue_results.py)."""
+    from shell_adhesion.analysis import figures
+    from shell_adhesion.analysis.products import products_key
+    from shell_adhesion.catalogue import files
+    _, study, cat, ds = local
+    run = lambda out: execute(study, tmp_path / out, scheduler=UNREACHABLE, catalogue=cat,
+                              progress=False)
+    first = run("a")            # copies or builds: the module's first run kept them
+    refuse = lambda what: lambda *a, **k: (_ for _ in ()).throw(AssertionError(what))
+    draw, build, read = figures.write_figures, dataset.build, files.read
+    monkeypatch.setattr(dataset, "build", refuse("a cube was built"))
+    monkeypatch.setattr(figures, "write_figures", refuse("a figure was drawn"))
+    monkeypatch.setattr(files, "read", refuse("a stored path set was decoded"))
+    copied = run("b")
+    assert copied.products.copied and copied.exit_code == 0
+    assert "copied from the catalogue" in summary(copied)
+    same_results(copied.dataset, ds)
+    made = lambda o: {p.relative_to(o.output.parent): p.read_bytes()
+                      for p in [o.output, *o.products.tables, *o.products.figures]}
+    assert made(copied) == made(first) and len(made(first)) > 3
+    assert run("b").products.kept          # and again into the same folder: kept there
+
+    digest = json.loads(first.output.with_name("tiny_products.json").read_text())
+    key = cat / "products" / products_key(digest["content_sha256"])
+    figure = next((key / "figures").iterdir())
+    figure.write_bytes(figure.read_bytes()[:-1] + b"x")         # altered
+    monkeypatch.setattr(figures, "write_figures", draw)
+    redrawn = run("c")
+    assert not redrawn.products.copied and redrawn.products.figures
+    assert {k: v for k, v in made(redrawn).items() if k.suffix != ".png"} == {
+        k: v for k, v in made(first).items() if k.suffix != ".png"}
+    assert (key / "manifest.json").is_file()                     # kept again
+    cube = next((cat / "cubes").glob("*.nc"))
+    cube.write_bytes(cube.read_bytes()[: cube.stat().st_size // 2])   # truncated
+    monkeypatch.setattr(files, "read", read)
+    monkeypatch.setattr(dataset, "build", build)
+    rebuilt = run("f")
+    assert rebuilt.exit_code == 0 and rebuilt.products.copied
+    same_results(rebuilt.dataset, ds)

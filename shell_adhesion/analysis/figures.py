@@ -619,7 +619,6 @@ MATERIAL_FIGURES = {"fig7_materials": fig_materials}   # a cube that sweeps a ma
 SHELL_FIGURES = ("fig2_von_mises", "fig3_profiles", "fig4_load_relaxation", "fig5_energy")
 
 
-RUN_FORMATS = ("png",)      # what `shell-adhesion run` draws; PDF on request (`plot --format`)
 PROCESSES = 2               # figures drawn side by side (forked, so nothing is imported again)
 
 

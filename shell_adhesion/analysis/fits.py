@@ -10,7 +10,6 @@ import math
 
 import numpy as np
 import xarray as xr
-from scipy import stats
 
 from shell_adhesion.theory import jkr_P_star_N, shell_law_scale_N
 
@@ -44,6 +43,7 @@ def fit_log_constant(y):
     m = float(y.mean())
     if n < 2:
         return m, (math.nan, math.nan)
+    from scipy import stats     # on use: the heaviest import of a run that draws nothing
     half = stats.t.ppf(0.975, n - 1) * y.std(ddof=1) / math.sqrt(n)
     return m, (m - half, m + half)
 
@@ -90,6 +90,7 @@ def power_law_fit(ds: xr.Dataset, where=None) -> PowerLaw:
     dof = n - p
     if dof > 0 and np.linalg.matrix_rank(X) == p:
         cov = (r @ r / dof) * np.linalg.inv(X.T @ X)
+        from scipy import stats
         half = stats.t.ppf(0.975, dof) * np.sqrt(np.diag(cov))
     else:
         half = np.full(p, np.nan)
@@ -130,6 +131,7 @@ def fit_line(x, y):
     x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
     if len(x) < 2:
         raise ValueError("a slope needs at least two points")
+    from scipy import stats
     fit = stats.linregress(x, y)
     if len(x) > 2:
         half = stats.t.ppf(0.975, len(x) - 2) * fit.stderr

@@ -8,7 +8,9 @@ all read from the results netCDF (never from the solver).
                                     written from it
 
 Every file is written atomically (shell_adhesion.atomic).  A run whose cube has the content of
-the one already there, with every file the manifest lists present, rewrites nothing.
+the one already there, with every file the manifest lists present, rewrites nothing.  A run
+keeps the drawn files in the catalogue under `products_key` (the cube's content, the drawing
+code, the formats; study.run): a cube of the same content elsewhere gets copies of them.
 """
 from dataclasses import dataclass, field
 import hashlib
@@ -18,12 +20,16 @@ import time
 
 import xarray as xr
 
+from shell_adhesion import __version__
 from shell_adhesion.atomic import write_text_atomic
 
-from .figures import RUN_FORMATS, write_figures
 from .slices import base_cavity, base_material
 from .summary import summary
 from .tables import FORMATS, cases_table, comparison_table, render
+
+RUN_FORMATS = ("png",)      # what `shell-adhesion run` draws; PDF on request (`plot --format`)
+# the code that draws the products: a change in it draws them again
+DRAWING_SOURCES = ("analysis/*.py", "cube.py", "energy.py", "theory.py")
 
 
 def tables_dir(results_nc) -> Path:
@@ -47,6 +53,7 @@ class Products:
     skipped: dict = field(default_factory=dict)
     seconds: dict = field(default_factory=dict)
     kept: bool = False      # the files of an earlier run of the same cube, not rewritten
+    copied: bool = False    # copied from the catalogue (drawn before from the same content)
 
 
 def manifest_path(results_nc) -> Path:
@@ -130,7 +137,22 @@ def write_products(results_nc, formats=RUN_FORMATS) -> Products:
     t1 = time.perf_counter()
     p.tables = write_tables(ds, tables_dir(path))
     t2 = time.perf_counter()
+    from .figures import write_figures      # matplotlib only when drawing (about 0.5 s)
     p.figures, p.skipped = write_figures(base_cavity(ds), figures_dir(path), formats)
     t3 = time.perf_counter()
     p.seconds = dict(read=t1 - t0, tables=t2 - t1, figures=t3 - t2, total=t3 - t0)
     return p
+
+
+def products_key(digest: str, formats=RUN_FORMATS) -> str:
+    """The catalogue key of the products of a cube of content `digest`
+    (study.dataset.content_sha256) in `formats`: with this package's version, the source
+    of the code that draws them (DRAWING_SOURCES) and matplotlib's version."""
+    from importlib.metadata import version
+    root = Path(__file__).resolve().parent.parent
+    h = hashlib.sha256(repr((digest, tuple(formats), __version__,
+                             version("matplotlib"))).encode())
+    for pattern in DRAWING_SOURCES:
+        for p in sorted(root.glob(pattern)):
+            h.update(str(p.relative_to(root)).encode() + b"\0" + p.read_bytes() + b"\0")
+    return h.hexdigest()

@@ -8,7 +8,6 @@ when reading.
 import hashlib
 from pathlib import Path
 
-import dask
 import netCDF4
 import xarray as xr
 
@@ -25,6 +24,7 @@ def write_atomic(ds: xr.Dataset, path, encoding=None) -> tuple:
     # with a dask.distributed client active, xarray would take its write lock on the
     # scheduler (a round trip per file, and a hang or an error at exit once the scheduler
     # is gone): the file is local, a local lock is right
+    import dask                 # on use: a run that writes nothing does not import it
     with atomic_path(path) as tmp, dask.config.set(scheduler="synchronous"):
         ds.to_netcdf(tmp, engine="netcdf4", format="NETCDF4", encoding=encoding)
         data = Path(tmp).read_bytes()

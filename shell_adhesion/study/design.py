@@ -11,7 +11,7 @@ import math
 import sys
 
 from shell_adhesion.analysis.design_search import OBJECTIVES, Design, search
-from shell_adhesion.study.progress import bar as progress_bar
+from shell_adhesion.study.progress import bar as progress_bar, logged
 from shell_adhesion.study.pull_off_map import DEFAULT_MAP, pull_off_map
 
 NAMES = ("P_star", "delta_star", "a_star")
@@ -92,8 +92,16 @@ def design(C10_MPa, gamma_J_m2, objective="pull_off", *, R_mm=None, b_mm=None,
         Solve the optimum with one FE case on the map's mesh and interface.
     progress : bool
         Show what runs on stderr: a bar (done/total, ETA) of the map search and of the FE
-        case's stages on a terminal or in a notebook, and the FE case's line.
+        case's stages on a terminal or in a notebook, and the FE case's line; in a log file
+        each stage's line at its start, at most every 10 s and when complete.
     """
+    with logged():          # in a log file too, its stages' lines (study.progress)
+        return _design(C10_MPa, gamma_J_m2, objective, R_mm, b_mm, t_mm, h_mm, map, confirm,
+                       progress)
+
+
+def _design(C10_MPa, gamma_J_m2, objective, R_mm, b_mm, t_mm, h_mm, map, confirm,
+            progress) -> DesignResult:
     pm = pull_off_map(map)
     material = dict(C10_MPa=C10_MPa, gamma_J_m2=gamma_J_m2, model="neo-hookean",
                     interface=pm.ds.attrs.get("interface", "no_slip"),

@@ -47,8 +47,10 @@ from . import dataset, interrupt, sharing
 from .config import StudyError, load_study, validate
 from .keys import relaxation_part, solver_source_sha256
 from .plan import Plan, Shell, make_plan, served_key
-from shell_adhesion.analysis.products import (Products, kept_products, record_products,
-                                              recorded_inputs, write_products)
+from shell_adhesion.analysis.products import (RUN_FORMATS, Products, figures_dir,
+                                              kept_products, products_key, record_products,
+                                              recorded_inputs, tables_dir, write_products)
+from shell_adhesion.catalogue import results as stored
 from .cost import estimate_s, shell_size
 from .progress import Progress, path_eta
 
@@ -660,11 +662,15 @@ def _execute(plan, out_dir, output, catalogue, scheduler, client, show, workers,
     try:
         run_id = cat.start_run(study.name, study.source, study.sha256, output,
                                solver.__version__)
-        # every set stored and the cube on disk built from these very inputs: keep it
-        # (the stored files are hashed only if the manifest records inputs at all)
-        inputs = _inputs(plan, cat) if recorded_inputs(output) else None
+        # every set stored and the cube on disk built from these very inputs: keep it;
+        # built elsewhere from them (kept in the catalogue): copy it and its products
+        inputs = _inputs(plan, cat)
         products = kept_products(output, inputs, key="inputs_sha256")
         if products is not None:
+            return _kept_run(plan, output, products, cat, run_id, t0)
+        cube = stored.fetch_cube(cat.dir, inputs)
+        if cube is not None:
+            products = _copy_cube(output, *cube, inputs, cat.dir)
             return _kept_run(plan, output, products, cat, run_id, t0)
         served, reused, missing = {}, [], []
         for s in plan.all_shells:
@@ -712,11 +718,12 @@ def _execute(plan, out_dir, output, catalogue, scheduler, client, show, workers,
             inputs = _inputs(plan, cat)
         if products is None:
             dataset.write(ds, output)
-            try:
-                products = write_products(output)
-                record_products(output, digest, products, inputs)
-            except Exception as e:      # the cube is written; a drawing bug must not lose it
-                products = Products(skipped={"tables and figures": _reason("products", e)})
+            if inputs is not None:
+                try:
+                    stored.store_cube(cat.dir, inputs, output, digest)
+                except OSError:         # not kept: the next run into a new folder builds it
+                    pass
+            products = _products(output, digest, inputs, cat.dir)
         elif inputs != recorded_inputs(output):
             record_products(output, digest, products, inputs)
         progress.update("cube", 1, note=str(output))
@@ -777,9 +784,63 @@ def _inputs(plan, cat):
     return dataset.inputs_sha256(plan, entries) if all(entries) else None
 
 
+def _groups(results_nc) -> dict:
+    """Where each group of products of the cube at `results_nc` goes."""
+    return {"tables": tables_dir(results_nc), "figures": figures_dir(results_nc)}
+
+
+def _catalogued_products(results_nc, digest: str, catalogue_dir,
+                        formats=RUN_FORMATS) -> Products:
+    """The tables and figures of the cube at `results_nc` (content `digest`): copied from
+    the catalogue at `catalogue_dir` if it holds them for this content and drawing code
+    (each file's digest checked; Products.copied), else drawn (write_products) and kept
+    there.  A catalogue that cannot keep them costs nothing but the next copy."""
+    t0 = time.perf_counter()
+    key = products_key(digest, formats)
+    found = stored.fetch_products(catalogue_dir, key)
+    groups = _groups(results_nc)
+    if found is not None:
+        files, skipped = found
+        p = Products(skipped=skipped, copied=True)
+        for rel, data in sorted(files.items()):
+            group, name = rel.split("/", 1)
+            written = stored.write_bytes_atomic(groups[group] / name, data)
+            (p.tables if group == "tables" else p.figures).append(written)
+        p.seconds = dict(copy=time.perf_counter() - t0, total=time.perf_counter() - t0)
+        return p
+    p = write_products(results_nc, formats)
+    files = {f"{group}/{Path(f).relative_to(groups[group]).as_posix()}": f
+             for group, made in (("tables", p.tables), ("figures", p.figures)) for f in made}
+    try:
+        stored.store_products(catalogue_dir, key, files, p.skipped)
+    except OSError:
+        pass
+    return p
+
+
+def _products(output, digest, inputs, catalogue_dir) -> Products:
+    """The tables and figures of the cube written at `output` (content `digest`), copied
+    from the catalogue or drawn (_catalogued_products), and the manifest
+    that lets a rerun keep them."""
+    try:
+        products = _catalogued_products(output, digest, catalogue_dir)
+        record_products(output, digest, products, inputs)
+    except Exception as e:      # the cube is written; a drawing bug must not lose it
+        products = Products(skipped={"tables and figures": _reason("products", e)})
+    return products
+
+
+def _copy_cube(output, data: bytes, digest: str, inputs: str, catalogue_dir):
+    """Write the cube `data` (content `digest`) kept in the catalogue for `inputs` to
+    `output`, then its products."""
+    stored.write_bytes_atomic(output, data)
+    return _products(output, digest, inputs, catalogue_dir)
+
+
 def _kept_run(plan, output, products, cat, run_id, t0) -> Outcome:
     """The Outcome of a run whose every path set is stored and whose cube on disk was
-    built from the same inputs (study.dataset.inputs_sha256): nothing is built or written."""
+    built from the same inputs (study.dataset.inputs_sha256), or copied there from the
+    catalogue (_copy_cube): nothing is built."""
     written = _written(output)
     counts = dataset.summary_counts(written)
     code = exit_code(written)
@@ -911,7 +972,9 @@ def summary(outcome: Outcome, ds=None) -> str:
         lines.append(f"  discarded a corrupt catalogue entry: {d}")
     pr = outcome.products
     if pr is not None:
-        kept = " (kept: the cube's content is unchanged)" if pr.kept else ""
+        kept = (" (kept: the cube's content is unchanged)" if pr.kept else
+                " (copied from the catalogue: drawn before from the same cube content)"
+                if pr.copied else "")
         if pr.tables:
             lines.append(f"tables: {len(pr.tables)} files in {pr.tables[0].parent}{kept}")
         if pr.figures:

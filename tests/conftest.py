@@ -92,6 +92,11 @@ FE_ENTRY_POINTS = {
 @pytest.fixture
 def forbid_fe(monkeypatch):
     """Make every entry into the FE solver raise (for code that must only read results)."""
+    forbid_fe_with(monkeypatch)
+
+
+def forbid_fe_with(monkeypatch):
+    """forbid_fe's work on a pytest MonkeyPatch: undone by its undo(), leaving nothing."""
     import importlib
 
     def forbidden(name):
@@ -99,10 +104,13 @@ def forbid_fe(monkeypatch):
             raise AssertionError(f"{name} was called: this code must not run the FE solver")
         return call
 
+    # import every module before patching any: a module first imported while another is
+    # patched would bind the forbidden stand-in (`from .x import name`) for the rest of the
+    # session, where monkeypatch's undo restores it as that module's original
+    modules = {module: importlib.import_module(module) for module in FE_ENTRY_POINTS}
     for module, names in FE_ENTRY_POINTS.items():
-        mod = importlib.import_module(module)
         for name in names:
-            monkeypatch.setattr(mod, name, forbidden(f"{module}.{name}"))
+            monkeypatch.setattr(modules[module], name, forbidden(f"{module}.{name}"))
 
 
 def load_cube(path):

@@ -1,5 +1,9 @@
 """A command line without traps: every bad input gives exit 2, exactly one line on stderr,
-no traceback, and creates nothing (run in a fresh folder, compared before and after)."""
+no traceback, and creates nothing (run in a fresh folder, compared before and after).
+The cases run one after another in one fresh interpreter, each in its own folder, through
+the command's entry point (`python -m shell_adhesion` is `sys.exit(cli.main())`, held by a
+test of its own): one start-up and import instead of one per case."""
+import json
 from pathlib import Path
 import subprocess
 import sys
@@ -104,20 +108,65 @@ def listing(folder: Path) -> dict:
     return {str(p.relative_to(folder)): p.stat().st_size for p in sorted(folder.rglob("*"))}
 
 
-@pytest.mark.parametrize("make, argv, expected", [b[1:] for b in BAD], ids=[b[0] for b in BAD])
-def test_bad_input_exit_2_one_line_nothing_created(tmp_path, make, argv, expected):
-    if make is not None:
-        make(tmp_path)
-    before = listing(tmp_path)
+# each case in its own folder of one interpreter: the exit code (main's return, or
+# SystemExit's from argparse), stdout and stderr as the process would give them
+_DRIVER = """
+import contextlib, io, json, os, sys, traceback
+from shell_adhesion.cli import main
+out = []
+for folder, argv in json.load(sys.stdin):
+    os.chdir(folder)
+    stdout, stderr = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(stdout), contextlib.redirect_stderr(stderr):
+        try:
+            code = main(argv)
+        except SystemExit as e:
+            code = e.code
+        except BaseException:
+            traceback.print_exc()
+            code = None
+    out.append(dict(code=code, stdout=stdout.getvalue(), stderr=stderr.getvalue()))
+print(json.dumps(out))
+"""
+
+
+@pytest.fixture(scope="module")
+def outcomes(tmp_path_factory):
+    """Case id -> (outcome, listing of its folder before, its folder)."""
+    folders, before = {}, {}
+    for name, make, _, _ in BAD:
+        folders[name] = tmp_path_factory.mktemp("trap")
+        if make is not None:
+            make(folders[name])
+        before[name] = listing(folders[name])
     env = {k: v for k, v in ENV.items() if k != "SHELL_ADHESION_CATALOGUE"}
-    out = subprocess.run([sys.executable, "-m", "shell_adhesion", *argv], cwd=tmp_path,
-                         env=env, capture_output=True, text=True, timeout=120)
-    assert out.returncode == 2, out.stderr
-    lines = out.stderr.splitlines()
-    assert len(lines) == 1 and "Traceback" not in out.stderr, out.stderr
+    cases = [(str(folders[name]), argv) for name, _, argv, _ in BAD]
+    run = subprocess.run([sys.executable, "-c", _DRIVER], input=json.dumps(cases), env=env,
+                         cwd=tmp_path_factory.mktemp("driver"), capture_output=True,
+                         text=True, timeout=600)
+    assert run.returncode == 0 and run.stderr == "", run.stderr[-3000:]
+    return {b[0]: (o, before[b[0]], folders[b[0]])
+            for b, o in zip(BAD, json.loads(run.stdout))}
+
+
+@pytest.mark.parametrize("name, expected", [(b[0], b[3]) for b in BAD], ids=[b[0] for b in BAD])
+def test_bad_input_exit_2_one_line_nothing_created(outcomes, name, expected):
+    out, before, folder = outcomes[name]
+    assert out["code"] == 2, out["stderr"]
+    lines = out["stderr"].splitlines()
+    assert len(lines) == 1 and "Traceback" not in out["stderr"], out["stderr"]
     assert expected in lines[0]
-    assert out.stdout == ""
-    assert listing(tmp_path) == before
+    assert out["stdout"] == ""
+    assert listing(folder) == before
+
+
+def test_the_process_gives_the_exit_code_and_the_one_line():
+    """`python -m shell_adhesion` itself: the cases above go through its entry point."""
+    out = subprocess.run([sys.executable, "-m", "shell_adhesion", *with_flag("--R", "nan")],
+                         env=ENV, capture_output=True, text=True, timeout=120)
+    assert out.returncode == 2 and out.stdout == ""
+    (line,) = out.stderr.splitlines()
+    assert line.startswith("shell-adhesion: error: --R: nan must be a finite number")
 
 
 def test_help_still_works():

@@ -224,7 +224,7 @@ def test_ctrl_c_keeps_the_finished_answers_and_a_rerun_solves_the_rest(tmp_path)
     def stored():
         try:
             return [r for r in list_entries(cat) if r["status"] == "ok"]
-        except (sqlite3.Error, FileNotFoundError):      # the index is being created
+        except (sqlite3.Error, FileNotFoundError):  # the index is being created
             return []
 
     proc = subprocess.Popen([sys.executable, "-m", "shell_adhesion", "run",

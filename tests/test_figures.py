@@ -132,8 +132,22 @@ def test_von_mises_map(ds):
     assert f"largest {float(vm.max()):.3g} MPa" in fig.get_suptitle()
 
 
-def test_write_figures_never_solves(ds, tmp_path, forbid_fe):
-    written, skipped = figures.write_figures(ds, tmp_path)
+@pytest.fixture(scope="module")
+def drawn(ds, tmp_path_factory):
+    """Every figure of the small study as `run` and `plot` draw them (PNG and PDF, side by
+    side, the default dpi), with the FE solver forbidden: (folder, written, skipped).  One
+    drawing read by the tests below."""
+    from conftest import forbid_fe_with
+    out = tmp_path_factory.mktemp("figures")
+    with pytest.MonkeyPatch.context() as patch:
+        forbid_fe_with(patch)
+        written, skipped = figures.write_figures(ds, out)
+    return out, written, skipped
+
+
+def test_write_figures_never_solves(drawn):
+    tmp_path, written, skipped = drawn
+    assert figures.PROCESSES > 1        # drawn side by side
     assert skipped == {}
     assert sorted(p.name for p in written) == sorted(
         f"{n}.{e}" for n in figures.FIGURES for e in ("png", "pdf"))
@@ -160,9 +174,10 @@ def test_run_writes_tables_and_figures_beside_the_cube(small_study):
     assert figs == {f"{n}.png" for n in figures.FIGURES}      # PDF on request (plot)
 
 
-def test_figures_drawn_side_by_side_are_those_drawn_one_by_one(ds, tmp_path):
+def test_figures_drawn_side_by_side_are_those_drawn_one_by_one(ds, drawn, tmp_path):
     one, skipped_one = figures.write_figures(ds, tmp_path / "one", ("png",), processes=1)
-    two, skipped_two = figures.write_figures(ds, tmp_path / "two", ("png",), processes=2)
+    _, written, skipped_two = drawn         # side by side (PROCESSES)
+    two = [p for p in written if p.suffix == ".png"]
     assert [p.name for p in one] == [p.name for p in two] and skipped_one == skipped_two
     assert all(a.stat().st_size == b.stat().st_size for a, b in zip(one, two))
 
@@ -278,9 +293,9 @@ def test_fig5_zooms_on_the_pull_off_state(ds):
         assert units_on(zoom, "mm$^2$", "mJ") and "zoom" in zoom.get_title()
 
 
-def test_png_figures_at_100_dpi_or_more(ds, small_study, tmp_path):
+def test_png_figures_at_100_dpi_or_more(drawn, small_study):
     from PIL import Image
-    written, _ = figures.write_figures(ds, tmp_path, formats=("png",))
+    written = [p for p in drawn[1] if p.suffix == ".png"]
     stem = small_study.with_suffix("")
     run_pngs = list(stem.with_name(stem.name + "_figures").glob("*.png"))
     assert len(run_pngs) == len(written) == len(figures.FIGURES)

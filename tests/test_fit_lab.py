@@ -31,6 +31,18 @@ C10_TOL, GAMMA_TOL = 0.015, 0.04      # issue 40: C10 within 1.5 %, gamma within
 DELTA0_TOL_MM = 0.05                  # the contact point: a fiftieth of the loading depth
 
 
+@pytest.fixture(autouse=True, scope="module")
+def paths_solved_once():
+    """Every fit here solves the same few path sets (one shell, the coarse mesh, the depth
+    and gamma buckets its curves share): each is solved once for the module and handed to
+    each fit that asks for it (the solve is deterministic; the fits do not modify it)."""
+    from shell_adhesion.study import fit as study_fit
+    solved = functools.lru_cache(maxsize=None)(study_fit._paths)
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(study_fit, "_paths", solved)
+        yield
+
+
 def fit_file(path, name="base", **kw):
     truth = stored(name)[0]
     return fit_curve(truth["R_mm"], truth["t_mm"], truth["h_mm"], path, mesh="coarse", **kw)

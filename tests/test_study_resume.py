@@ -39,7 +39,7 @@ error_bars: false
 def ok_rows(cat):
     try:
         return [r for r in list_entries(cat) if r["status"] == "ok"]
-    except sqlite3.Error:       # the index is still being created
+    except (sqlite3.Error, FileNotFoundError):  # the index is still being created
         return []
 
 

@@ -40,7 +40,7 @@ from .cohesive import Interface, anchors_at
 from .contact import INTERFACES, Constraints, constraints, gaps, rim_load
 from .forms import Linearisation, strain_energy, tangent
 from .linear import Timer
-from .path import Settings, _Problem, _chord_pays
+from .path import REFINE_MAX, REFINE_TOL, Settings, _Problem, _chord_pays
 
 
 @dataclass(frozen=True)
@@ -60,8 +60,9 @@ class ArcSettings:
     P_resolve: float = 1e-3    # a retraction step passing a new least P is halved until
     #                            |dP/ds| ds <= P_resolve |P| at both its ends
     max_resolve: int = 20      # ... at most this many times for one least P
-    chord: str = "start"       # corrector iterations reuse the newest factorisation
-    #                            ("start": from the first, that of the last tangent; "": never)
+    chord: str = "after"       # corrector iterations reuse the newest factorisation
+    #                            ("start": from the first, that of the last tangent;
+    #                            "after": once a Newton iteration of this corrector; "": never)
     max_chord: int = 30        # ... at most this many chord iterations per corrector
     chord_weight: float = 3.0  # a chord iteration counts as 1 / this of a Newton one
     stall: int = 400           # a path whose contact radius and delta reach no new extreme
@@ -147,12 +148,28 @@ class _Continuation:
         m = self.metric
         return float(u[m] @ v[m]) + du * dv
 
-    def tangent_at(self, K, c, orient=None):
+    def tangent_at(self, K, c, orient=None, stale=False):
         """Unit tangent (tx, td) at a converged state of tangent K, oriented along `orient`
-        (a previous tangent), or towards increasing delta."""
-        lu, dr_dd = self.factor(K, c)
+        (a previous tangent), or towards increasing delta.  `stale`: start from the newest
+        factorisation of c (an earlier iterate's) and refine with K (path.REFINE_MAX
+        steps to path.REFINE_TOL), factorising K only if that does not converge."""
+        e = np.zeros(self.d.ndof)
+        e[c.rimz] = 1.0
+        dr_dd = -(K @ e)[c.free]
         tx = np.zeros(self.d.ndof)
-        tx[c.free] = self.solve(lu, -dr_dd)
+        lu = self.problem.newest_of(c)[0] if stale else None
+        if lu is not None:
+            tx[c.free] = self.solve(lu, -dr_dd)
+            for _ in range(REFINE_MAX):
+                step = self.solve(lu, -dr_dd - (K @ tx)[c.free])
+                tx[c.free] += step
+                if np.abs(step).max() <= REFINE_TOL * np.abs(tx).max():
+                    break
+            else:
+                lu = None
+        if lu is None:
+            lu, dr_dd = self.factor(K, c)
+            tx[c.free] = self.solve(lu, -dr_dd)
         tx[c.rimz] = -1.0
         td = 1.0
         n = math.sqrt(self.dot(tx, td, tx, td))
@@ -260,7 +277,7 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
     least, halvings = math.inf, 0        # the least P of the retraction so far
     ended_by = f"step limit: {s.max_steps} states"
     outer_z = d.uz(d.capmesh.outer[cn.candidates])
-    best, since = None, 0           # the extremes (a, delta) of this leg, states since one
+    stalled = Stall()
     while len(states) < s.max_steps:
         # the step: no outer gap changes by more than dx_max delta_c (or dx_travel
         # delta_max) on the tangent
@@ -268,7 +285,7 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
                  / (np.abs(t[0][outer_z]).max() + abs(t[1])))
         try:
             x_new, d_new, K, r, (full, chord) = cn.correct(c, x, delta, t, ds)
-            t_new = cn.tangent_at(K, c, t)
+            t_new = cn.tangent_at(K, c, t, stale=bool(s.chord))
             if cn.dot(*t_new, *t) < s.cos_min:
                 # the tangent turned too far in one step: the corrector may have crossed
                 # to another part of the path (a fold passed, or the branch behind)
@@ -303,17 +320,10 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
         elif turn >= 0 and gaps(d, x, cn.candidates).min() > law.reach:
             ended_by = "left the cohesive range"
             break
-        sign = 1.0 if turn < 0 else -1.0        # the approach advances, the retraction recedes
-        now = (sign * states[-1].a, sign * delta)
-        if best is None or len(states) - 1 == turn:
-            best, since = now, 0
-        elif now[0] > best[0] + 1e-12 or now[1] > best[1] + 1e-12:
-            best, since = (max(best[0], now[0]), max(best[1], now[1])), 0
-        else:
-            since += 1
-        if since >= s.stall:
+        if stalled.after(states[-1].a, delta, retracting=turn >= 0,
+                         new_leg=len(states) - 1 == turn) >= s.stall:
             ended_by = (f"stalled: neither the contact radius nor delta passed its extreme of "
-                        f"the {'approach' if turn < 0 else 'retraction'} in {s.stall} states")
+                        f"the {'retraction' if turn >= 0 else 'approach'} in {s.stall} states")
             break
         if turn < 0 and delta < delta0 and gaps(d, x, cn.candidates).min() > law.reach:
             # below delta0 in contact is the branch behind the jump-in (a compliant shell
@@ -342,6 +352,28 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
                     ended_by = f"no tangent after the stuck nodes changed ({err})"
                     break
     return ArcPath(tuple(states), turn, ended_by, cn.timer)
+
+
+class Stall:
+    """Counts the states since the path last passed an extreme of its leg: the largest
+    contact radius or delta on the approach, the least on the retraction (a path whose
+    contact edge zigzags between nodes, or that went off onto a detached branch, passes
+    none)."""
+
+    def __init__(self):
+        self.best, self.since = None, 0
+
+    def after(self, a, delta, retracting, new_leg=False) -> int:
+        """The count after a state of contact radius a and approach delta (units of R)."""
+        sign = -1.0 if retracting else 1.0
+        now = (sign * a, sign * delta)
+        if self.best is None or new_leg:
+            self.best, self.since = now, 0
+        elif now[0] > self.best[0] + 1e-12 or now[1] > self.best[1] + 1e-12:
+            self.best, self.since = (max(self.best[0], now[0]), max(self.best[1], now[1])), 0
+        else:
+            self.since += 1
+        return self.since
 
 
 def _passes_least(old: ArcState, new: ArcState, least: float, ds: float,

@@ -55,7 +55,8 @@ class ArcSettings:
     dx_max: float = 0.25       # largest change of any outer gap per step, in delta_c
     dx_travel: float = 0.1     # ... and in delta_max (resolves P where delta_c is long)
     grow: float = 1.5          # step growth after an easy step
-    easy: int = 4              # ... one of at most this many Newton iterations
+    easy: int = 4              # ... one of at most this many Newton iterations (a chord
+    #                            iteration counting as 1 / chord_weight of one)
     cos_min: float = 0.9       # least cosine between the tangents of consecutive states
     P_resolve: float = 1e-3    # a retraction step passing a new least P is halved until
     #                            |dP/ds| ds <= P_resolve |P| at both its ends
@@ -80,7 +81,7 @@ class ArcState:
     c: float                   # cohesive-zone radius / R: where the gap reaches delta_c
     U: float                   # strain energy / (C10 R^3)
     Pi: float                  # interface energy / (C10 R^3)
-    iterations: int = 0        # Newton iterations of the corrector that found it
+    iterations: int = 0        # Newton and chord iterations of the corrector that found it
     slope: tuple = (math.nan, math.nan)   # (d delta, dP) along the path's tangent there
     x: np.ndarray = field(default=None, repr=False)
     # the mixed-mode law: Pi with the anchors updated at this state minus Pi (C10 R^3; the

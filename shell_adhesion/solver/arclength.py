@@ -66,7 +66,7 @@ class ArcSettings:
     #                            "after": once a Newton iteration of this corrector; "": never)
     max_chord: int = 30        # ... at most this many chord iterations per corrector
     chord_weight: float = 3.0  # a chord iteration counts as 1 / this of a Newton one
-    stall: int = 400           # a path whose contact radius and delta reach no new extreme
+    stall: int = 400           # a path whose a, c and delta reach no new extreme
     #                            (max on the approach, min on the retraction) in this many
     #                            states ends (the contact edge zigzags between nodes)
 
@@ -321,10 +321,11 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
         elif turn >= 0 and gaps(d, x, cn.candidates).min() > law.reach:
             ended_by = "left the cohesive range"
             break
-        if stalled.after(states[-1].a, delta, retracting=turn >= 0,
+        if stalled.after(states[-1].a, states[-1].c, delta, retracting=turn >= 0,
                          new_leg=len(states) - 1 == turn) >= s.stall:
-            ended_by = (f"stalled: neither the contact radius nor delta passed its extreme of "
-                        f"the {'retraction' if turn >= 0 else 'approach'} in {s.stall} states")
+            ended_by = (f"stalled: none of the contact radius, the cohesive-zone radius and "
+                        f"delta passed its extreme of the "
+                        f"{'retraction' if turn >= 0 else 'approach'} in {s.stall} states")
             break
         if turn < 0 and delta < delta0 and gaps(d, x, cn.candidates).min() > law.reach:
             # below delta0 in contact is the branch behind the jump-in (a compliant shell
@@ -357,21 +358,23 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
 
 class Stall:
     """Counts the states since the path last passed an extreme of its leg: the largest
-    contact radius or delta on the approach, the least on the retraction (a path whose
-    contact edge zigzags between nodes, or that went off onto a detached branch, passes
-    none)."""
+    contact radius, cohesive-zone radius or delta on the approach, the least on the
+    retraction (a path whose contact edge zigzags between nodes, or that went off onto a
+    detached branch, passes none; the jump-in, where delta falls before the contact
+    radius grows, passes new cohesive-zone radii)."""
 
     def __init__(self):
         self.best, self.since = None, 0
 
-    def after(self, a, delta, retracting, new_leg=False) -> int:
-        """The count after a state of contact radius a and approach delta (units of R)."""
+    def after(self, a, c, delta, retracting, new_leg=False) -> int:
+        """The count after a state of contact radius a, cohesive-zone radius c and
+        approach delta (units of R)."""
         sign = -1.0 if retracting else 1.0
-        now = (sign * a, sign * delta)
+        now = np.array([a, c, delta]) * sign
         if self.best is None or new_leg:
             self.best, self.since = now, 0
-        elif now[0] > self.best[0] + 1e-12 or now[1] > self.best[1] + 1e-12:
-            self.best, self.since = (max(self.best[0], now[0]), max(self.best[1], now[1])), 0
+        elif np.any(now > self.best + 1e-12):
+            self.best, self.since = np.maximum(self.best, now), 0
         else:
             self.since += 1
         return self.since

@@ -90,3 +90,23 @@ def test_tangent_against_finite_differences(iface):
     Kc = iface.add(x, 0 * K, 0 * r)[0]
     fdc = (iface.residual(x + h * e) - iface.residual(x - h * e)) / (2 * h)
     assert np.abs(fdc - Kc @ e).max() <= 1e-5 * np.abs(Kc @ e).max()
+
+
+def test_a_path_that_passes_no_new_extreme_is_counted_as_stalled():
+    from shell_adhesion.solver.arclength import Stall
+    # approach (a, c, delta): delta grows, then the jump-in (delta falls while the zone
+    # grows, no contact yet), then a grows; then the contact edge zigzags between two
+    # nodes while c and delta wobble below their largest values
+    st = Stall()
+    counts = [st.after(a, c, d, retracting=False) for a, c, d in
+              [(0.0, 0.0, -0.01), (0.0, 0.0, 0.0), (0.0, 0.05, -0.01), (0.1, 0.2, -0.02),
+               (0.2, 0.25, -0.03)]]
+    assert counts == [0, 0, 0, 0, 0]
+    zigzag = [st.after(0.19 + 0.01 * (k % 2), 0.24, -0.03, retracting=False)
+              for k in range(6)]
+    assert zigzag == [1, 2, 3, 4, 5, 6]
+    # the retraction is a new leg: its extremes are the least a, c and delta
+    assert st.after(0.2, 0.25, 0.01, retracting=True, new_leg=True) == 0
+    assert [st.after(a, c, d, retracting=True) for a, c, d in
+            [(0.19, 0.25, 0.01), (0.19, 0.25, 0.0), (0.195, 0.25, 0.002), (0.0, 0.1, 0.0),
+             (0.0, 0.0, -0.01)]] == [0, 0, 1, 0, 0]

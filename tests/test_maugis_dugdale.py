@@ -90,3 +90,26 @@ def test_delta_star_is_ill_conditioned_at_lambda_1():
     assert all(abs(s.P / star.P - 1) <= 0.011 for s in near)
     assert all(abs(s.D - star.D) >= 0.09 for s in near)
     assert abs(near[0].D - near[1].D) >= 0.2 * abs(star.D)
+
+
+def test_the_excess_over_jkr_falls_as_lambda_to_the_minus_two():
+    # DESIGN.md section 10 ("Two methods, one answer"): the excess at lambda 3, 4, 5 is
+    # 1.1, 0.65, 0.42 %; lambda^2 x excess is 10.06, 10.41, 10.58 % there, so the
+    # zero-range rule P0 + C / lambda^2 applied to the closed form gives JKR's -1.5 within
+    # 0.02 % from lambda 4 and 5 (-1.50029), 0.04 % by least squares over 3, 4, 5
+    # (-1.50056); a lambda^-1 rule misses by 0.49 % (docs/adhesion-range.md)
+    lam = (3.0, 4.0, 5.0)
+    P = [md.pull_off(v).P for v in lam]
+    excess = [p / -1.5 - 1 for p in P]
+    assert [round(100 * e, 2) for e in excess] == [1.12, 0.65, 0.42]
+    scaled = [e * v ** 2 for e, v in zip(excess, lam)]
+    assert [round(100 * v, 2) for v in scaled] == [10.06, 10.41, 10.58]
+    two, lsq = md.zero_range(lam, P)
+    assert abs(two / -1.5 - 1) < 2e-4 and abs(lsq / -1.5 - 1) < 4e-4
+    one = (5 * P[2] - 4 * P[1]) / (5 - 4)       # P0 + C / lambda
+    assert round(100 * abs(one / -1.5 - 1), 2) == 0.49
+    # the rule is exact on its own law
+    assert md.zero_range((2, 3, 7), [-1 + 4 / v ** 2 for v in (2, 3, 7)]) == pytest.approx(
+        (-1.0, -1.0), abs=1e-12)
+    with pytest.raises(ValueError, match="two distinct lambdas"):
+        md.zero_range((3.0, 3.0), (-1.0, -1.0))

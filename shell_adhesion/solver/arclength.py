@@ -38,9 +38,9 @@ from shell_adhesion.errors import ConvergenceError
 
 from .cohesive import Interface, anchors_at
 from .contact import INTERFACES, Constraints, constraints, gaps, rim_load
-from .forms import strain_energy, tangent
+from .forms import Linearisation, strain_energy, tangent
 from .linear import Timer
-from .path import Settings, _Problem
+from .path import REFINE_MAX, REFINE_TOL, Settings, _Problem, _chord_pays
 
 
 @dataclass(frozen=True)
@@ -55,11 +55,20 @@ class ArcSettings:
     dx_max: float = 0.25       # largest change of any outer gap per step, in delta_c
     dx_travel: float = 0.1     # ... and in delta_max (resolves P where delta_c is long)
     grow: float = 1.5          # step growth after an easy step
-    easy: int = 4              # ... one of at most this many Newton iterations
+    easy: int = 4              # ... one of at most this many Newton iterations (a chord
+    #                            iteration counting as 1 / chord_weight of one)
     cos_min: float = 0.9       # least cosine between the tangents of consecutive states
     P_resolve: float = 1e-3    # a retraction step passing a new least P is halved until
     #                            |dP/ds| ds <= P_resolve |P| at both its ends
     max_resolve: int = 20      # ... at most this many times for one least P
+    chord: str = "after"       # corrector iterations reuse the newest factorisation
+    #                            ("start": from the first, that of the last tangent;
+    #                            "after": once a Newton iteration of this corrector; "": never)
+    max_chord: int = 30        # ... at most this many chord iterations per corrector
+    chord_weight: float = 3.0  # a chord iteration counts as 1 / this of a Newton one
+    stall: int = 400           # a path whose a, c and delta reach no new extreme
+    #                            (max on the approach, min on the retraction) in this many
+    #                            states ends (the contact edge zigzags between nodes)
 
 
 @dataclass(frozen=True, eq=False)
@@ -72,7 +81,7 @@ class ArcState:
     c: float                   # cohesive-zone radius / R: where the gap reaches delta_c
     U: float                   # strain energy / (C10 R^3)
     Pi: float                  # interface energy / (C10 R^3)
-    iterations: int = 0        # Newton iterations of the corrector that found it
+    iterations: int = 0        # Newton and chord iterations of the corrector that found it
     slope: tuple = (math.nan, math.nan)   # (d delta, dP) along the path's tangent there
     x: np.ndarray = field(default=None, repr=False)
     # the mixed-mode law: Pi with the anchors updated at this state minus Pi (C10 R^3; the
@@ -104,13 +113,15 @@ class _Continuation:
         self.anchors = None          # the mixed-mode law's history (trace sets it)
         # the loading solver's factorisation of the free block and d(residual)/d(delta)
         problem = _Problem(self.d, interface, Settings(), self.timer)
+        self.problem = problem
         self.factor, self.solve = problem.factor, problem.solve
         cm = self.d.capmesh
         on_rim = np.isin(cm.outer, cm.rim)
         self.candidates = np.flatnonzero(~on_rim)           # outer nodes that may touch
         self.Z = cm.nodes[1, cm.outer]
-        self.weight = np.zeros(self.d.ndof)                 # the metric on x
-        self.weight[self.d.uz(cm.outer[self.candidates])] = 1.0
+        # the metric on x: the u_z of the outer nodes that may touch (a dot product over
+        # them alone: one over every dof is a threaded BLAS call beyond 10,000 dofs)
+        self.metric = self.d.uz(cm.outer[self.candidates])
 
     def linearise(self, x):
         t0 = time.perf_counter()
@@ -118,15 +129,48 @@ class _Continuation:
         self.timer.assembly += time.perf_counter() - t0
         return K, r
 
-    def dot(self, u, du, v, dv):
-        return float(np.dot(u * self.weight, v)) + du * dv
+    def residual(self, x):
+        """The residual alone (a chord iteration assembles no tangent), and the
+        linearisation that gives the tangent at x on demand (`tangent_of`)."""
+        t0 = time.perf_counter()
+        lin = Linearisation(self.d, x)
+        r = lin.r + self.iface.residual(x, self.anchors)
+        self.timer.assembly += time.perf_counter() - t0
+        return lin, r
 
-    def tangent_at(self, K, c, orient=None):
+    def tangent_of(self, lin, x):
+        """(K, r) at x from the linearisation `residual` gave there."""
+        t0 = time.perf_counter()
+        K, r = self.iface.add(x, *lin.tangent(), self.anchors)
+        self.timer.assembly += time.perf_counter() - t0
+        return K, r
+
+    def dot(self, u, du, v, dv):
+        m = self.metric
+        return float(u[m] @ v[m]) + du * dv
+
+    def tangent_at(self, K, c, orient=None, stale=False):
         """Unit tangent (tx, td) at a converged state of tangent K, oriented along `orient`
-        (a previous tangent), or towards increasing delta."""
-        lu, dr_dd = self.factor(K, c)
+        (a previous tangent), or towards increasing delta.  `stale`: start from the newest
+        factorisation of c (an earlier iterate's) and refine with K (path.REFINE_MAX
+        steps to path.REFINE_TOL), factorising K only if that does not converge."""
+        e = np.zeros(self.d.ndof)
+        e[c.rimz] = 1.0
+        dr_dd = -(K @ e)[c.free]
         tx = np.zeros(self.d.ndof)
-        tx[c.free] = self.solve(lu, -dr_dd)
+        lu = self.problem.newest_of(c)[0] if stale else None
+        if lu is not None:
+            tx[c.free] = self.solve(lu, -dr_dd)
+            for _ in range(REFINE_MAX):
+                step = self.solve(lu, -dr_dd - (K @ tx)[c.free])
+                tx[c.free] += step
+                if np.abs(step).max() <= REFINE_TOL * np.abs(tx).max():
+                    break
+            else:
+                lu = None
+        if lu is None:
+            lu, dr_dd = self.factor(K, c)
+            tx[c.free] = self.solve(lu, -dr_dd)
         tx[c.rimz] = -1.0
         td = 1.0
         n = math.sqrt(self.dot(tx, td, tx, td))
@@ -136,7 +180,14 @@ class _Continuation:
         return tx, td
 
     def correct(self, c, x0, d0, t, ds):
-        """Equilibrium on the hyperplane t . (y - y0) = ds: (x, delta, K, r, iterations)."""
+        """Equilibrium on the hyperplane t . (y - y0) = ds: (x, delta, K, r, iterations).
+
+        With s.chord, an iteration reuses the newest factorisation of c (a chord step: the
+        residual alone is assembled) where `path._chord_pays` (the first one: that of the
+        tangent at y0); else, and when a chord step fails to cut the residual, full
+        Newton.  `iterations` counts both; a step is easy (ds grows) if it converged in at
+        most s.easy full-Newton-equivalent iterations, a chord step counting as
+        1 / s.chord_weight of one."""
         s, d = self.s, self.d
         tx, td = t
         x = x0 + ds * tx
@@ -144,25 +195,43 @@ class _Continuation:
         x[c.rimz] = -delta
         history = []
         size = math.sqrt(self.dot(x0, d0, x0, d0))     # round-off scale of the constraint
-        for it in range(s.max_iter + 1):
+        lu, dr_dd = (self.problem.newest_of(c) if s.chord == "start" else (None, None))
+        full = chord = 0
+        tpos = c.free_pos[self.metric]
+        m = self.metric[tpos >= 0]          # the metric's free dofs
+        tpos = tpos[tpos >= 0]
+        for it in range(s.max_iter + s.max_chord + 1):
             with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-                K, r = self.linearise(x)
-            if not (np.all(np.isfinite(r)) and np.all(np.isfinite(K.data))):
+                lin, r = self.residual(x)
+            if not np.all(np.isfinite(r)):
                 raise ConvergenceError("non-finite residual")
             res = np.abs(r[c.free]).max()
             goal = s.tol * max(np.abs(r[c.fixed]).max(), 0.0) + s.atol * d.force_scale
             g = self.dot(tx, td, x - x0, delta - d0) - ds
             history.append(res)
             if res <= goal and abs(g) <= 1e-10 * (abs(ds) + size):
-                return x, delta, K, r, it
-            if it == s.max_iter or (it > 2 and res > 1e3 * history[1]):
+                with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+                    K, r = self.tangent_of(lin, x)
+                if not np.all(np.isfinite(K.data)):
+                    raise ConvergenceError("non-finite tangent")
+                return x, delta, K, r, (full, chord)
+            if full >= s.max_iter or (it > 2 and res > 1e3 * history[1]):
                 break
-            lu, dr_dd = self.factor(K, c)
-            self.timer.newton_iterations += 1
+            if (s.chord and lu is not None and chord < s.max_chord
+                    and (len(history) == 1 or _chord_pays(history, goal))):
+                chord += 1
+                self.timer.chord_iterations += 1
+            else:
+                with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+                    K = self.tangent_of(lin, x)[0]
+                if not np.all(np.isfinite(K.data)):
+                    raise ConvergenceError("non-finite tangent")
+                lu, dr_dd = self.factor(K, c)
+                full += 1
+                self.timer.newton_iterations += 1
             a = self.solve(lu, -r[c.free])
             b = self.solve(lu, -dr_dd)
-            tw = (tx * self.weight)[c.free]
-            dd = (-g - tw @ a) / (tw @ b + td)
+            dd = (-g - tx[m] @ a[tpos]) / (tx[m] @ b[tpos] + td)
             x[c.free] += a + b * dd
             delta += dd
             x[c.rimz] = -delta
@@ -209,14 +278,15 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
     least, halvings = math.inf, 0        # the least P of the retraction so far
     ended_by = f"step limit: {s.max_steps} states"
     outer_z = d.uz(d.capmesh.outer[cn.candidates])
+    stalled = Stall()
     while len(states) < s.max_steps:
         # the step: no outer gap changes by more than dx_max delta_c (or dx_travel
         # delta_max) on the tangent
         ds = min(ds, min(s.dx_max * law.delta_c, s.dx_travel * delta_max)
                  / (np.abs(t[0][outer_z]).max() + abs(t[1])))
         try:
-            x_new, d_new, K, r, it = cn.correct(c, x, delta, t, ds)
-            t_new = cn.tangent_at(K, c, t)
+            x_new, d_new, K, r, (full, chord) = cn.correct(c, x, delta, t, ds)
+            t_new = cn.tangent_at(K, c, t, stale=bool(s.chord))
             if cn.dot(*t_new, *t) < s.cos_min:
                 # the tangent turned too far in one step: the corrector may have crossed
                 # to another part of the path (a fold passed, or the branch behind)
@@ -228,7 +298,7 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
                 ended_by = f"step length below {s.ds_min:g} at delta = {delta:.6g} R ({err})"
                 break
             continue
-        state = _state(cn, x_new, d_new, K, r, t_new, it)
+        state = _state(cn, x_new, d_new, K, r, t_new, full + chord)
         if (turn >= 0 and halvings < s.max_resolve and len(states) - 1 > turn
                 and _passes_least(states[-1], state, least, ds, s)):
             ds *= 0.5               # resolve the least P: a corner where the contact is lost
@@ -240,7 +310,7 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
         states.append(state)
         if progress is not None:
             progress(states[-1])
-        if it <= s.easy:
+        if full + chord / s.chord_weight <= s.easy:
             ds *= s.grow
         # (a_turn only where the approach advances: behind the jump-in, delta falls)
         if turn < 0 and (delta >= delta_max
@@ -251,7 +321,13 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
         elif turn >= 0 and gaps(d, x, cn.candidates).min() > law.reach:
             ended_by = "left the cohesive range"
             break
-        elif turn < 0 and delta < delta0 and gaps(d, x, cn.candidates).min() > law.reach:
+        if stalled.after(states[-1].a, states[-1].c, delta, retracting=turn >= 0,
+                         new_leg=len(states) - 1 == turn) >= s.stall:
+            ended_by = (f"stalled: none of the contact radius, the cohesive-zone radius and "
+                        f"delta passed its extreme of the "
+                        f"{'retraction' if turn >= 0 else 'approach'} in {s.stall} states")
+            break
+        if turn < 0 and delta < delta0 and gaps(d, x, cn.candidates).min() > law.reach:
             # below delta0 in contact is the branch behind the jump-in (a compliant shell
             # held by its adhered apex); out of range, the approach went back
             ended_by = f"the approach turned back out of range below delta0 = {delta0:.6g} R"
@@ -278,6 +354,30 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
                     ended_by = f"no tangent after the stuck nodes changed ({err})"
                     break
     return ArcPath(tuple(states), turn, ended_by, cn.timer)
+
+
+class Stall:
+    """Counts the states since the path last passed an extreme of its leg: the largest
+    contact radius, cohesive-zone radius or delta on the approach, the least on the
+    retraction (a path whose contact edge zigzags between nodes, or that went off onto a
+    detached branch, passes none; the jump-in, where delta falls before the contact
+    radius grows, passes new cohesive-zone radii)."""
+
+    def __init__(self):
+        self.best, self.since = None, 0
+
+    def after(self, a, c, delta, retracting, new_leg=False) -> int:
+        """The count after a state of contact radius a, cohesive-zone radius c and
+        approach delta (units of R)."""
+        sign = -1.0 if retracting else 1.0
+        now = np.array([a, c, delta]) * sign
+        if self.best is None or new_leg:
+            self.best, self.since = now, 0
+        elif np.any(now > self.best + 1e-12):
+            self.best, self.since = np.maximum(self.best, now), 0
+        else:
+            self.since += 1
+        return self.since
 
 
 def _passes_least(old: ArcState, new: ArcState, least: float, ds: float,

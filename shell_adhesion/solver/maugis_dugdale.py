@@ -123,3 +123,21 @@ def scales(gamma, R, K) -> dict:
     return dict(length=(math.pi * gamma * R * R / K) ** (1.0 / 3.0),
                 approach=(math.pi ** 2 * gamma ** 2 * R / K ** 2) ** (1.0 / 3.0),
                 force=math.pi * gamma * R)
+
+
+def zero_range(lambdas, P):
+    """The zero-range (JKR-like) limit P0 of pull-offs P at Tabor parameters `lambdas`
+    (any force unit), under P = P0 + C / lambda^2 (a sphere's Maugis-Dugdale excess over
+    JKR falls so: lambda^2 times it is 10.06, 10.41, 10.58 % at lambda 3, 4, 5):
+    (P0 from the two largest lambdas, P0 by least squares over all of them)."""
+    lam = np.asarray(lambdas, dtype=float)
+    P = np.asarray(P, dtype=float)
+    if lam.shape != P.shape or len(lam) < 2 or len(set(lam.tolist())) < 2:
+        raise ValueError(f"zero_range: needs at least two distinct lambdas with one P each "
+                         f"(got lambdas {lam.tolist()}, P {P.tolist()})")
+    order = np.argsort(lam)
+    l1, l2 = lam[order[-2:]]
+    p1, p2 = P[order[-2:]]
+    two = (l2 ** 2 * p2 - l1 ** 2 * p1) / (l2 ** 2 - l1 ** 2)
+    A = np.column_stack([np.ones_like(lam), lam ** -2.0])
+    return float(two), float(np.linalg.lstsq(A, P, rcond=None)[0][0])

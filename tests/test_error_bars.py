@@ -24,9 +24,12 @@ matplotlib.use("Agg")
 def test_rule():
     assert error_bar(-1.0, -1.01) == pytest.approx(SAFETY * 0.01 / (2 ** ORDER - 1))
     assert np.isnan(error_bar(1.0, np.nan))
-    # three meshes converging at order 2 (differences 0.04 then 0.01): Richardson
+    # three meshes converging at order 2 (differences 0.04 then 0.01): Richardson with
+    # factor 1.25, the order credited at most the assumed one; below it, as observed
     assert observed_order(1.0, 1.01, 1.05) == pytest.approx(2.0)
-    assert error_bar(1.0, 1.01, 1.05) == pytest.approx(SAFETY_OBSERVED * 0.01 / 3)
+    assert error_bar(1.0, 1.01, 1.05) == pytest.approx(SAFETY_OBSERVED * 0.01 / (2 ** ORDER - 1))
+    p = np.log2(0.015 / 0.01)
+    assert error_bar(1.0, 1.01, 1.025) == pytest.approx(SAFETY_OBSERVED * 0.01 / (2 ** p - 1))
     # not monotone (the differences change sign), or an order beyond OBSERVED_ORDERS:
     # back to order 1 with factor 3, on the larger of the finer difference and the coarser
     # one carried to the finer mesh at order 1
@@ -41,7 +44,8 @@ def test_rule():
 
 
 def test_the_rule_is_named():
-    assert rule(1.0, 1.01, 1.05) == "observed order p = 2 (factor 1.25)"
+    assert rule(1.0, 1.01, 1.05) == "observed order p = 2, used as 1 (factor 1.25)"
+    assert rule(1.0, 1.01, 1.025) == "observed order p = 0.585 (factor 1.25)"
     assert rule(1.0, 1.01, 0.99) == "order 1 assumed (factor 3)"
     assert rule(1.0, 1.01, 1.05, False) == "order 1 assumed (factor 3)"
     assert rule(1.0, 1.01) == rule(1.0, 1.01, np.nan) == "order 1 assumed (factor 3), two meshes"
@@ -71,6 +75,23 @@ def test_one_kind_of_contact_front_gives_an_order_a_mix_does_not():
         bar = error_bar(*f)
         for limit in limits:
             assert abs(f[0] - limit) < bar < 3 * abs(f[0] - limit)
+
+
+def test_the_base_shell_bar_holds_the_extrapolated_value():
+    """The paper's base shell (R = h = 20 mm, t = 3 mm, C10 0.3 MPa, gamma 30 J/m^2,
+    no_slip), P* [N] on the coarser, coarse, default and fine meshes, one kind of contact
+    front (`python benchmarks/error_bars.py 20 3 20 0.3 30 default coarser coarse default
+    fine`).  The order observed on the first three (1.54) is above the one on the last
+    three (1.19); credited, it gave the default mesh a bar of 0.0014 N, 0.83 of its distance
+    to the value extrapolated from the last three.  Credited at most as 1, the bar holds
+    that value and the fine mesh's, at most 3 times its distance to either."""
+    coarser, coarse, default, fine = -1.7058950, -1.7123369, -1.7145509, -1.7155239
+    assert observed_order(default, coarse, coarser) > 1.5
+    p = observed_order(fine, default, coarse)
+    limit = fine + (fine - default) / (2 ** p - 1)
+    bar = error_bar(default, coarse, coarser)
+    for truth in (limit, fine):
+        assert abs(default - truth) < bar < 3 * abs(default - truth)
 
 
 def test_relaxation_starts_of_one_kind(base_coarse):
@@ -226,8 +247,8 @@ def test_thin_shell_error_bar_is_useful():
     (t/R 0.1), `solve_case` on the default mesh: the P* bar uses the observed order (the
     companions relax contact fronts of the answer's kind), holds the fine mesh's P* within
     2 bars, is at most 3 times its distance to it and below 2 % of P* (measured: -0.68081
-    +- 0.00434 N, order 1.08; before, +- 0.019 N from the order-1 rule, 7.6 times the
-    distance to the fine mesh).  The fine mesh takes minutes."""
+    +- 0.00485 N, order 1.08 credited as 1; before, +- 0.019 N from the order-1 rule, 7.6
+    times the distance to the fine mesh).  The fine mesh takes minutes."""
     import shell_adhesion as sa
     args = (15.0, 1.5, 11.25, 0.5, [20.0])
     po = sa.solve_case(*args, progress=False).to_dict()["pull_off"][0]["fixed_load"]
@@ -238,4 +259,4 @@ def test_thin_shell_error_bar_is_useful():
     assert po["P_N_rule"].startswith("observed order")
     assert distance <= 2 * bar and bar <= 3 * distance and bar < 0.02 * abs(po["P_N"])
     within("thin shell P*", po["P_N"], -0.68081, 0.0, floor=1e-5)
-    within("thin shell P* error bar", bar, 0.00434, 0.0, floor=1e-5)
+    within("thin shell P* error bar", bar, 0.00485, 0.0, floor=1e-5)

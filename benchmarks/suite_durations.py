@@ -71,7 +71,7 @@ def main(argv=None):
         load0 = os.getloadavg()[0]
         t0 = time.perf_counter()
         run = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider",
-                              "--durations=0", *ns.pytest_args], cwd=REPO,
+                              "--durations=0", "-rfE", *ns.pytest_args], cwd=REPO,
                              capture_output=True, text=True)
         text = run.stdout
         machine = (f"{os.cpu_count()} cores; load average {load0:.1f} before, "
@@ -83,6 +83,9 @@ def main(argv=None):
         return 2
     ns.out.write_text(page(rows, summary, wall, machine, ns.note))
     print(f"{summary} in {wall:.0f} s -> {ns.out}")
+    for line in text.splitlines():        # pytest's short summary (-rfE): what failed
+        if line.startswith(("FAILED ", "ERROR ")):
+            print(line)
     return 0
 
 

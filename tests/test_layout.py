@@ -42,7 +42,14 @@ def test_the_check_sees_a_heavy_import():
     # the same check, with one forbidden import added, names it
     assert "shell_adhesion.solver" in loaded_after(*analysis_modules(),
                                                    "shell_adhesion.solver.path")
-    assert "dask" in loaded_after("shell_adhesion.study.run")
+    assert "dask" in loaded_after("shell_adhesion.cube", "dask.array")
+
+
+def test_the_run_imports_dask_only_when_it_computes():
+    # a warm run (everything in the catalogue) starts no cluster: importing the run module
+    # leaves dask and distributed out
+    loaded = loaded_after("shell_adhesion.study.run")
+    assert "dask" not in loaded and "distributed" not in loaded
 
 
 def test_importing_the_package_is_light():

@@ -319,7 +319,9 @@ def _correct(cn, c, x0, d0, t, ds):
     x[c.rimz] = -delta
     history = []
     size = math.sqrt(cn.dot(x0, d0, x0, d0))
-    tw = (tx * cn.weight)[c.free]
+    weight = np.zeros(d.ndof)               # the continuation's metric on x
+    weight[cn.metric] = 1.0
+    tw = (tx * weight)[c.free]
     for it in range(s.max_iter + 1):
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             K, r = cn.linearise(x)

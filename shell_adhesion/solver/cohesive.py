@@ -130,13 +130,19 @@ class CohesiveLaw:
         """(energy, stress, slope) of the penalty: slope k (g < -e), rising linearly from
         0 at g = 0 over -e < g < 0, e = PENALTY_ONSET delta_c (a continuous slope: Newton
         does not cycle on points that touch)."""
-        k, e = self.stiffness, PENALTY_ONSET * self.delta_c
-        h = np.clip(g, -e, 0.0)
-        deep = np.minimum(g + e, 0.0)
-        energy = -k * h ** 3 / (6 * e) + k * (deep * (deep / 2 - e / 2))
-        stress = -k * h ** 2 / (2 * e) + k * deep
-        slope = np.where(g < -e, k, -k * h / e)
-        return energy, stress, slope
+        return penalty(g, self.stiffness, PENALTY_ONSET * self.delta_c)
+
+
+def penalty(g, k: float, e: float):
+    """(energy, stress, slope) of a contact penalty on the gap g (< 0: penetration): slope
+    k beyond -e, rising linearly from 0 at g = 0 over -e < g < 0 (a continuous slope:
+    Newton does not cycle on points that touch)."""
+    h = np.clip(g, -e, 0.0)
+    deep = np.minimum(g + e, 0.0)
+    energy = -k * h ** 3 / (6 * e) + k * (deep * (deep / 2 - e / 2))
+    stress = -k * h ** 2 / (2 * e) + k * deep
+    slope = np.where(g < -e, k, -k * h / e)
+    return energy, stress, slope
 
 
 def mixed(law: CohesiveLaw, beta: float, g, s):

@@ -47,8 +47,8 @@ import numpy as np
 
 from shell_adhesion.errors import ConvergenceError, InputError
 
-from .arclength import ArcSettings, _Continuation
-from .cohesive import Interface
+from .arclength import ArcSettings, _Continuation, work as arc_work
+from .cohesive import Interface, penalty
 from .contact import constraints, gaps, rim_load
 from .forms import Discretisation, discretise, strain_energy
 from .geometry import T_MIN, Cap, check_cap, check_delta_max
@@ -74,14 +74,7 @@ class PenaltyContact:
         return 0.0
 
     def __call__(self, g):
-        k, e = self.stiffness, self.onset
-        g = np.asarray(g, dtype=float)
-        h = np.clip(g, -e, 0.0)
-        deep = np.minimum(g + e, 0.0)
-        energy = -k * h ** 3 / (6 * e) + k * (deep * (deep / 2 - e / 2))
-        stress = -k * h ** 2 / (2 * e) + k * deep
-        slope = np.where(g < -e, k, -k * h / e)
-        return energy, stress, slope
+        return penalty(np.asarray(g, dtype=float), self.stiffness, self.onset)
 
 
 @dataclass(frozen=True)
@@ -191,29 +184,8 @@ class SnapPath:
 
     def work(self) -> np.ndarray:
         """The work of P from the first state to each (integral of P d delta, C10 R^3),
-        along the path through its folds: each step a cubic Hermite curve in the (delta, P)
-        plane (scaled by their ranges) through its two states with their path tangents,
-        parametrised by its chord; 3-point Gauss is exact for it."""
-        D, P = self.array("delta"), self.array("P")
-        scale = np.array([np.ptp(D), np.ptp(P)])
-        if len(D) < 2 or not np.all(scale > 0):
-            return np.zeros(len(D))
-        y = np.stack([D, P], 1) / scale
-        t = np.array([s.slope for s in self.states]) / scale
-        t /= np.linalg.norm(t, axis=1)[:, None]
-        xi, wq = np.polynomial.legendre.leggauss(3)
-        u = 0.5 * (xi + 1)
-        h = np.stack([2 * u ** 3 - 3 * u ** 2 + 1, u ** 3 - 2 * u ** 2 + u,
-                      3 * u ** 2 - 2 * u ** 3, u ** 3 - u ** 2])
-        dh = np.stack([6 * u ** 2 - 6 * u, 3 * u ** 2 - 4 * u + 1,
-                       6 * u - 6 * u ** 2, 3 * u ** 2 - 2 * u])
-        W = np.zeros(len(D))
-        for k in range(len(D) - 1):
-            chord = y[k + 1] - y[k]
-            L = float(np.hypot(*chord))
-            ctrl = np.stack([y[k], L * t[k], y[k + 1], L * t[k + 1]])
-            W[k + 1] = W[k] + 0.5 * float(np.sum(wq * (h.T @ ctrl[:, 1]) * (dh.T @ ctrl[:, 0])))
-        return W * scale[0] * scale[1]
+        along the path through its folds (`arclength.work`)."""
+        return arc_work(self)
 
 
 def contact_set(iface: Interface, x) -> tuple:

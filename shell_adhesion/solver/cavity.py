@@ -165,17 +165,12 @@ class CavityLoad:
     def gas_volume(self, p):
         """Sealed: the volume at which the gas has gauge pressure p, and its derivative."""
         c = self.cavity
-        ratio = (c.p0 + c.p_atm) / (p + c.p_atm)
-        V = self.V0 * ratio ** (1.0 / c.n)
-        return V, -V / (c.n * (p + c.p_atm))
+        return gas_volume(p, self.V0, c.p0, c.p_atm, c.n)
 
     def gas_energy(self, V) -> float:
         """E_gas(V) = -int_V0^V p_gauge dV' (zero at V0; units of C10 R^3)."""
         c = self.cavity
-        dv = (V - self.V0) / self.V0
-        L = math.log1p(dv)
-        k = L if c.n == 1 else math.expm1((1.0 - c.n) * L) / (1.0 - c.n)
-        return -(c.p0 + c.p_atm) * self.V0 * k + c.p_atm * self.V0 * dv
+        return gas_energy(V, self.V0, c.p0, c.p_atm, c.n)
 
     def energy(self, x) -> float:
         """Energy of the pressure load in state x: -p (V - V0), or E_gas(V) if sealed."""
@@ -200,22 +195,55 @@ class CavityLoad:
         the bordered gas row and column (-dV/dx, dV_gas/dp).  K's sparsity is kept."""
         V, g, H = self.volume_derivatives(x)
         p = self.pressure(x)
-        data = K.data.copy()
-        np.add.at(data, self.slots.ravel(), -p * H.ravel())
-        r = r.copy()
-        np.add.at(r, self.dofs.ravel(), -p * g.ravel())
         if not self.cavity.sealed:
-            return type(K)((data, K.indices, K.indptr), shape=K.shape), r
+            return pressure_tangent(K, r, self.dofs, self.slots, g, H, p)
         Vg, dVg = self.gas_volume(p)
-        r[self.n_fe] = Vg - V
-        rows, indptr, indices, old_pos, col_pos, last_pos = self.border
-        gfull = np.bincount(self.dofs.ravel(), weights=g.ravel(), minlength=self.n_fe)
-        out = np.empty(len(indices))
-        out[old_pos] = data
-        out[col_pos] = -gfull[rows]
-        out[last_pos] = np.append(-gfull[rows], dVg)
-        n = self.n_fe + 1
-        return type(K)((out, indices, indptr), shape=(n, n)), r
+        return pressure_tangent(K, r, self.dofs, self.slots, g, H, p, self.border,
+                                (Vg - V, dVg), self.n_fe)
+
+
+def gas_volume(p, V0, p0, p_atm, n):
+    """(V, dV/dp): the volume / R^3 at which a gas sealed at volume V0 and gauge p0 (ambient
+    p_atm, p_abs V^n constant; pressures / C10) has gauge pressure p."""
+    ratio = (p0 + p_atm) / (p + p_atm)
+    V = V0 * ratio ** (1.0 / n)
+    return V, -V / (n * (p + p_atm))
+
+
+def gas_energy(V, V0, p0, p_atm, n) -> float:
+    """E_gas(V) = -int_V0^V p_gauge dV' (C10 R^3; zero at V0) of the gas of `gas_volume`:
+    the gas's energy against the atmosphere."""
+    dv = (V - V0) / V0
+    L = math.log1p(dv)
+    k = L if n == 1 else math.expm1((1.0 - n) * L) / (1.0 - n)
+    return -(p0 + p_atm) * V0 * k + p_atm * V0 * dv
+
+
+def pressure_tangent(K, r, dofs, slots, g, H, p, border=None, gas=None, n_fe=None,
+                     coupled=True):
+    """(K, r) plus the load of a gauge pressure p on a surface enclosing the volume V:
+    r - p dV/dx and K - p d2V/dx2 (g = dV/dx per edge (E, 6) at `dofs`, H = d2V/dx2 (E, 6,
+    6) at the CSR `slots`), K's pattern kept.  With `border` (`_border`'s layout) and
+    gas = (row, dp): the gas unknown (entry n_fe) bordered on, r[n_fe] = row, diagonal dp,
+    column and row -dV/dx (`coupled`) or 0 (a gas row that does not see V)."""
+    data = K.data.copy()
+    np.add.at(data, slots.ravel(), -p * H.ravel())
+    r = r.copy()
+    np.add.at(r, dofs.ravel(), -p * g.ravel())
+    if border is None:
+        return type(K)((data, K.indices, K.indptr), shape=K.shape), r
+    rows, indptr, indices, old_pos, col_pos, last_pos = border
+    if coupled:
+        coupling = -np.bincount(dofs.ravel(), weights=g.ravel(), minlength=n_fe)[rows]
+    else:
+        coupling = np.zeros(len(rows))
+    r[n_fe], dp = gas
+    out = np.empty(len(indices))
+    out[old_pos] = data
+    out[col_pos] = coupling
+    out[last_pos] = np.append(coupling, dp)
+    n = n_fe + 1
+    return type(K)((out, indices, indptr), shape=(n, n)), r
 
 
 def bind(d, cavity: Cavity):
@@ -232,17 +260,25 @@ def bind(d, cavity: Cavity):
     nodes = np.stack([inner[0:-1:2], inner[1::2], inner[2::2]], axis=1)   # (E, 3)
     n_fe = 2 * d.n2 + d.n1
     dofs = np.concatenate([nodes, d.n2 + nodes], axis=1)
-    keys_csr = (np.repeat(np.arange(n_fe, dtype=np.int64), np.diff(d.csr_indptr)) * n_fe
-                + d.csr_indices)
-    keys = (dofs[:, :, None].astype(np.int64) * n_fe + dofs[:, None, :]).reshape(len(dofs), 36)
-    slots = np.searchsorted(keys_csr, keys)
-    if not np.array_equal(keys_csr[slots], keys):
-        raise ValueError("inner-surface dofs are not coupled in the FE sparsity pattern")
+    slots = edge_slots(d, dofs)
     load = CavityLoad(cavity, n_fe, dofs, cm.nodes[0, nodes], cm.nodes[1, nodes], slots, 1.0)
     load = replace(load, V0=load.volume(np.zeros(n_fe + 1)))
     if cavity.sealed:
         load = replace(load, border=_border(d.csr_indptr, d.csr_indices, np.unique(dofs)))
     return replace(d, cavity=load)
+
+
+def edge_slots(d, dofs):
+    """(E, 36) positions in the FE CSR data (forms.discretise's pattern) of the blocks
+    coupling each edge's 6 dofs (`dofs`, (E, 6): u_r of its 3 nodes, then u_z)."""
+    n_fe = 2 * d.n2 + d.n1
+    keys_csr = (np.repeat(np.arange(n_fe, dtype=np.int64), np.diff(d.csr_indptr)) * n_fe
+                + d.csr_indices)
+    keys = (dofs[:, :, None].astype(np.int64) * n_fe + dofs[:, None, :]).reshape(len(dofs), 36)
+    slots = np.searchsorted(keys_csr, keys)
+    if not np.array_equal(keys_csr[np.minimum(slots, len(keys_csr) - 1)], keys):
+        raise ValueError("surface dofs are not coupled in the FE sparsity pattern")
+    return slots
 
 
 def _border(indptr, indices, rows):

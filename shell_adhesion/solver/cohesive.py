@@ -56,7 +56,7 @@ from functools import cached_property
 
 import numpy as np
 
-from .forms import Discretisation
+from .forms import Discretisation, tangent_pattern
 
 # the Tabor-Maugis parameters supported: DMT-like 0.05 to 3.  A path must resolve the
 # cohesive zone at its contact edge, (m - 1) / m of the contact radius at a sphere's
@@ -233,11 +233,12 @@ class Interface:
 
     @cached_property
     def slots(self) -> np.ndarray:
-        """(6, 6, n_edges) positions of the edge matrices in the tangent's CSR data."""
+        """(6, 6, n_edges) positions of the edge matrices in the tangent's CSR data (the
+        FE pattern, bordered if the discretisation's load has an unknown)."""
         d = self.d
         rows = np.broadcast_to(self.dofs[:, None, :], (6, 6, self.dofs.shape[1]))
         cols = np.broadcast_to(self.dofs[None, :, :], rows.shape)
-        indptr, indices = d.csr_indptr, d.csr_indices
+        indptr, indices = tangent_pattern(d)
         out = np.empty(rows.shape, dtype=np.int64)
         for idx in np.ndindex(*rows.shape):
             i, j = rows[idx], cols[idx]

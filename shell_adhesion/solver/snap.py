@@ -98,6 +98,11 @@ class SnapSettings:
     #                            round-off floor of the residual: 2e-13 to 7e-12 of 1.5e-3)
     max_states: int = 4000     # states on the whole path
     stiffness: float = 1e4     # the contact penalty (PenaltyContact), C10 / R
+    open_ds: float = 1e-6      # a sealed pocket's opening is resolved to this arc step
+    seal_lift: float = 0.1     # a sealed pocket closes at the first ring whose apex is
+    #                            lifted by more than this many thicknesses (the soft
+    #                            penalty lifts the flattened centre by 1e-3 t: no pocket)
+    seal_at_turn: bool = False  # ... or at the turn to the unloading (press, then seal)
     onset: float = 1e-4        # ... and its onset / R: the contact force rises as the
     #                            square of the penetration over this depth.  The sharpest
     #                            the continuation passes the snap with (t/R 0.02; 4e-5
@@ -121,6 +126,14 @@ class SnapState:
     slope: tuple               # (d delta, dP) per unit arc length, along the path
     seconds: float = 0.0       # wall time of the step that found it
     x: np.ndarray = field(default=None, repr=False)
+    # the pocket (solver.pocket; a discretisation bound to one): its volume / R^3, gauge
+    # pressure / C10, seal radius / R (the inner edge of the outermost contact run; NaN:
+    # no ring), the gas's energy / (C10 R^3), and whether the gas is sealed
+    V: float = math.nan
+    p: float = 0.0
+    r_seal: float = math.nan
+    E_gas: float = 0.0
+    sealed: bool = False
 
     @property
     def ring(self) -> bool:
@@ -154,8 +167,9 @@ class SnapPath:
     """The loading traced by arc length, in path order."""
 
     states: tuple
-    ended_by: str              # "" if it reached delta_max
+    ended_by: str              # "" if it reached delta_max (and unload_to)
     timer: Timer
+    turn: int = -1             # the state at which the loading turned to unload (-1: none)
 
     def array(self, name):
         return np.array([getattr(s, name) for s in self.states])
@@ -217,19 +231,30 @@ def contact_set(iface: Interface, x) -> tuple:
 
 
 def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = SnapSettings(),
-                  progress=None) -> SnapPath:
+                  progress=None, unload_to: float = None) -> SnapPath:
     """The frictionless loading without adhesion from delta = 0 to delta_max / R, by arc
-    length through every fold (module docstring).
+    length through every fold (module docstring), and, with `unload_to`, the unloading
+    from there on by the same continuation (delta decreasing) to unload_to / R (< 0: a pull).
 
-    Ends (`SnapPath.ended_by`) at delta_max (""), or when a step fails below
-    settings.ds_min, or at settings.max_states states.  `progress(state)` is called after
-    each state if given."""
+    A discretisation bound to a pocket (solver.pocket.bind) carries its gas: sealed, the
+    pocket seals at the first state whose contact set is a ring around the lifted apex
+    (ambient pressure at its volume then) and the path ends where the pocket opens again
+    (no contact ring left around a gap; resolved to settings.open_ds of arc).
+
+    Ends (`SnapPath.ended_by`) at delta_max or unload_to (""), where a sealed pocket opens
+    ("pocket opened ..."), or when a step fails below settings.ds_min, or at
+    settings.max_states states.  `progress(state)` is called after each state if given."""
     if not (math.isfinite(delta_max) and delta_max > 0):
         raise ValueError(f"delta_max: {delta_max!r} must be a finite number > 0 (units of R)")
+    if unload_to is not None and not (math.isfinite(unload_to) and unload_to < delta_max):
+        raise ValueError(f"unload_to: {unload_to!r} must be a finite number < delta_max "
+                         f"({delta_max:g} R)")
     s = settings
     law = PenaltyContact(s.stiffness, s.onset)
-    cn = _Continuation(Interface(d, law), "frictionless",
-                       ArcSettings(tol=s.tol, max_iter=s.max_iter))
+    pocket = _pocket_of(d)
+    arc = ArcSettings(tol=s.tol, max_iter=s.max_iter)
+    cn = _Continuation(Interface(d, law), "frictionless", arc)
+    timers = [cn.timer]
     c = constraints(d, "frictionless", [])
     outer_z = d.uz(d.capmesh.outer[cn.candidates])
     dz_max = s.dz_share * d.capmesh.cap.t
@@ -239,12 +264,15 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
     t = cn.tangent_at(K, c)
     states = [_state(cn, x, delta, K, r, t, 0, 0.0)]
     ds = s.ds_first
+    turn = -1
     ended_by = f"state limit: {s.max_states} states"
     clock = time.perf_counter()
     while len(states) < s.max_states:
         ds = min(ds, s.ds_max, dz_max / (np.abs(t[0][outer_z]).max() + abs(t[1])))
         try:
             xn, dn, Kn, rn, it = _correct(cn, c, x, delta, t, ds)
+            if cn.d.cavity is not None and cn.d.cavity.sealed and _opens(cn, xn):
+                raise ConvergenceError("the pocket opens")
             L = math.sqrt(cn.dot(xn - x, dn - delta, xn - x, dn - delta))
             chord = ((xn - x) / L, (dn - delta) / L)
             tn = cn.tangent_at(Kn, c, chord)
@@ -253,6 +281,11 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
                                        f"{math.degrees(math.acos(s.cos_min)):.0f} degrees")
         except ConvergenceError as err:
             ds *= 0.5
+            if (cn.d.cavity is not None and cn.d.cavity.sealed and ds < s.open_ds
+                    and (str(err) == "the pocket opens" or not _sealed_ahead(cn, x, t, ds))):
+                ended_by = (f"pocket opened: the contact ring around it is lost between "
+                            f"delta = {delta:.6g} R and {delta + 2 * ds * t[1]:.6g} R")
+                break
             if ds < s.ds_min:
                 ended_by = f"step below {s.ds_min:g} at delta = {delta:.6g} R ({err})"
                 break
@@ -270,12 +303,60 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
         clock = now
         if progress is not None:
             progress(states[-1])
-        if delta >= delta_max:
+        if turn < 0 and delta >= delta_max:
+            if unload_to is None:
+                ended_by = ""
+                break
+            turn = len(states) - 1
+            t = (-t[0], -t[1])
+        elif turn >= 0 and delta <= unload_to:
             ended_by = ""
             break
+        if pocket is not None and pocket.sealed and not cn.d.cavity.sealed and (
+                turn == len(states) - 1 if s.seal_at_turn
+                else states[-1].ring and states[-1].apex_gap > s.seal_lift * d.capmesh.cap.t):
+            # the ring closes: the gas is sealed at ambient pressure, the path goes on
+            # with its stiffness (the state is the same: p = 0, no force yet)
+            from .pocket import seal
+            cn = _Continuation(Interface(seal(cn.d, x), law), "frictionless", arc)
+            timers.append(cn.timer)
+            c = constraints(cn.d, "frictionless", [])
+            K, r = cn.linearise(x)
+            t = cn.tangent_at(K, c, t)
+            states[-1] = _state(cn, x, delta, K, r, t, it, states[-1].seconds, slope)
         if it <= s.easy:
             ds *= s.grow
-    return SnapPath(tuple(states), ended_by, cn.timer)
+    return SnapPath(tuple(states), ended_by, _sum(timers), turn)
+
+
+def _pocket_of(d):
+    """The Pocket a discretisation is bound to, or None."""
+    from .pocket import PocketLoad
+    return d.cavity.pocket if isinstance(d.cavity, PocketLoad) else None
+
+
+def _opens(cn, x) -> bool:
+    """A sealed pocket is open in state x: no run of the contact penalty (its quadrature
+    points below the plane) off the axis is left to seal it, or no ring around a gap."""
+    return cn.d.cavity.is_open(x) or not any(r0 > 0 for r0, _ in contact_set(cn.iface, x)[1])
+
+
+def _sealed_ahead(cn, x, t, ds) -> bool:
+    """Whether the pocket is still closed a step ds ahead on the tangent (a predictor
+    check: a corrector that fails near the opening fails because V(x) jumps there)."""
+    return not _opens(cn, x + ds * t[0])
+
+
+def _sum(timers) -> Timer:
+    """One Timer adding up the counts and times of several."""
+    out = Timer()
+    for tm in timers:
+        for k, v in tm.as_dict().items():
+            if isinstance(v, (int, float)) and not isinstance(v, bool):
+                setattr(out, k, getattr(out, k) + v)
+            elif v:
+                setattr(out, k, v)
+    return out
 
 
 def _correct(cn, c, x0, d0, t, ds):
@@ -335,10 +416,15 @@ def _state(cn, x, delta, K, r, t, it, seconds, slope=None) -> SnapState:
     d = cn.d
     runs, radii = contact_set(cn.iface, x)
     apex = float(gaps(d, x, [0])[0])
+    pocket = {}
+    if _pocket_of(d) is not None:
+        V, p, r_seal = d.cavity.measure(x)
+        pocket = dict(V=V, p=p, r_seal=r_seal, E_gas=d.cavity.energy(x),
+                      sealed=d.cavity.sealed)
     return SnapState(float(delta), rim_load(d, r), strain_energy(d, x), cn.iface.energy(x),
                      runs, radii, apex, it,
                      (float(t[1]), rim_load(d, K @ t[0])) if slope is None else slope,
-                     seconds, x.copy())
+                     seconds, x.copy(), **pocket)
 
 
 def ring_arc(delta_max: float) -> float:

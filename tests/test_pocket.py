@@ -136,9 +136,27 @@ def test_ambient_pressure_in_units_of_C10():
         pk.p_atm_over_C10(101.325, 0.0)
 
 
-def _unloading(mode, n, unload_to, p_atm=P_ATM):
+def _unloading(mode, n, unload_to, p_atm=P_ATM, **seal):
     d = pk.bind(_d(), pk.Pocket(mode, p_atm, n))
-    return trace_loading(d, DELTA_MAX, SnapSettings(seal_at_turn=True), unload_to=unload_to)
+    settings = SnapSettings(**(seal or dict(seal_at_turn=True)))
+    return trace_loading(d, DELTA_MAX, settings, unload_to=unload_to)
+
+
+def _opens_at(path, delta_t, P_expected):
+    """The sealed path ends where its pocket opens, at delta_t thicknesses (to 0.005 t)
+    under a compressed gas and P_expected (to 5e-7 C10 R^2), its energy balanced."""
+    assert path.ended_by.startswith("pocket opened")
+    delta, p, P = _opening(path)
+    assert delta == pytest.approx(delta_t, abs=0.005) and p > 0
+    assert P == pytest.approx(P_expected, abs=0.005e-4)
+    assert _energy_miss(path) <= ENERGY
+
+
+def _opening(path):
+    """delta / t, gauge pressure / C10 and P / (C10 R^2) of the last sealed state."""
+    last = path.states[-1]
+    assert last.sealed
+    return last.delta / T, last.p, last.P
 
 
 def _energy_miss(path):
@@ -169,6 +187,9 @@ def _sealed_checks(path, n, p_atm):
     # P is still compressive
     last = sealed[-1]
     assert last.p > 0 and last.P > 0
+    # where the ring opens it carries nothing: the gas alone holds the rim load,
+    # P = p pi r_seal^2 (global equilibrium; measured to 1e-4 at p_a/C10 0.3378)
+    assert last.P == pytest.approx(last.p * math.pi * last.r_seal ** 2, rel=1e-3)
     return P.min(), last
 
 
@@ -179,12 +200,70 @@ def test_sealed_pocket_unloading_conserves_energy_and_opens():
     _sealed_checks(path, 1.0, 0.01)
     E = path.array("E_gas")
     assert np.abs(E).max() > 10 * ENERGY * path.array("U").max()
+    # docs/thin-shells.md: opens at 4.58 t, gauge 6.5e-4 C10 (0.065 p_a), P 2.88e-4
+    delta, p, P = _opening(path)
+    assert delta == pytest.approx(4.58, abs=0.005)
+    assert p == pytest.approx(6.5e-4, abs=0.05e-4) and p / 0.01 == pytest.approx(0.065, abs=5e-4)
+    assert P == pytest.approx(2.88e-4, abs=0.005e-4)
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("n", [1.0, 1.4])
 def test_sealed_pocket_at_ambient_pressure(n):
-    _sealed_checks(_unloading("sealed", n, -T), n, P_ATM)
+    path = _unloading("sealed", n, -T)
+    _sealed_checks(path, n, P_ATM)
+    # docs/thin-shells.md: pressed to 5.04 t, ring 0.383-0.393 R, pocket 1.356e-2 R^3,
+    # opens at 4.69 t with P = +2.93e-4 (n = 1: gauge +6.42e-4 C10, 0.0019 p_a), against
+    # the ideal suction force 0.156 C10 R^2
+    turn = path.states[path.turn]
+    assert turn.delta / T == pytest.approx(5.04, abs=0.005)
+    assert turn.radii[-1] == pytest.approx((0.383, 0.393), abs=5e-4)
+    assert turn.V == pytest.approx(1.356e-2, abs=0.0005e-2)
+    assert P_ATM * math.pi * turn.r_seal ** 2 == pytest.approx(0.156, abs=5e-4)
+    delta, p, P = _opening(path)
+    assert delta == pytest.approx(4.69, abs=0.005)
+    assert P == pytest.approx(2.93e-4, abs=0.005e-4)
+    if n == 1.0:
+        assert p == pytest.approx(6.42e-4, abs=0.005e-4)
+        assert p / P_ATM == pytest.approx(0.0019, abs=0.00005)
+        assert P == pytest.approx(p * math.pi * path.states[-1].r_seal ** 2, rel=1e-4)
+
+
+@pytest.mark.slow
+def test_sealed_at_the_first_ring():
+    # sealed at the first ring lifted by 0.1 t, which the continuation reaches on the
+    # snap's unstable branch: the path goes on back along it, compresses the gas and
+    # opens (docs/thin-shells.md: sealed at 2.59 t, opens at 1.36 t, P +1.56e-4)
+    path = _unloading("sealed", 1.0, -T, seal_lift=0.1)
+    k = next(i for i, s in enumerate(path.states) if s.sealed)
+    assert path.states[k].apex_gap > 0.1 * T and not path.states[k - 1].apex_gap > 0.1 * T
+    assert path.states[k].delta / T == pytest.approx(2.59, abs=0.005)
+    assert path.ended_by.startswith("pocket opened") and path.turn < 0
+    _opens_at(path, 1.36, 1.56e-4)
+
+
+@pytest.mark.slow
+def test_sealed_pocket_unloading_retraces_its_loading():
+    # a soft gas (p_a / C10 = 0.001) sealed at the first ring lifted by a thickness: the
+    # dimple grows, the gas expands (docs: to -0.86 p_a at the turn, 5.02 t), and the
+    # unloading, conservative and frictionless, retraces the loading's sealed branch
+    # (P at the same delta the same) back to the sealing state; the pocket then shrinks
+    # below its sealed volume and the ring opens (1.75 t, P +1.87e-4)
+    p_atm = 0.001
+    path = _unloading("sealed", 1.0, -5 * T, p_atm, seal_lift=1.0)
+    k = next(i for i, s in enumerate(path.states) if s.sealed)
+    turn = path.states[path.turn]
+    assert turn.delta / T == pytest.approx(5.02, abs=0.005)
+    assert turn.p / p_atm == pytest.approx(-0.86, abs=0.005)
+    up = path.states[k:path.turn + 1]
+    D_up = np.array([s.delta for s in up])
+    P_up = np.array([s.P for s in up])
+    assert np.all(np.diff(D_up) > 0)        # the sealed loading is monotone in delta
+    back = [s for s in path.states[path.turn + 1:] if up[0].delta < s.delta < D_up[-1]]
+    assert len(back) >= 10
+    for s in back:
+        assert s.P == pytest.approx(np.interp(s.delta, D_up, P_up), rel=2e-3)
+    _opens_at(path, 1.75, 1.87e-4)
 
 
 @pytest.mark.slow

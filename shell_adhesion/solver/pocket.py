@@ -43,11 +43,12 @@ MODES = ("vented", "sealed")
 
 @dataclass(frozen=True)
 class Pocket:
-    """The pocket's gas: `mode` one of MODES; `p_atm` the ambient pressure / C10 (> 0);
-    `n` the polytropic exponent (> 0; 1 isothermal, 1.4 adiabatic air)."""
+    """The pocket's gas: `mode` one of MODES; `p_atm` the ambient pressure / C10 (> 0;
+    `p_atm_over_C10` from kPa; needed when sealed); `n` the polytropic exponent (> 0; 1
+    isothermal, 1.4 adiabatic air)."""
 
     mode: str = "vented"
-    p_atm: float = 0.1
+    p_atm: float = None
     n: float = 1.0
 
     def __post_init__(self):
@@ -64,6 +65,11 @@ def check_pocket(mode, p_atm, n, names=None):
     nm = {**dict(mode="pocket", p_atm="p_atm", n="n"), **(names or {})}
     if mode not in MODES:
         raise InputError(f"{nm['mode']}: {mode!r} must be one of {', '.join(MODES)}")
+    if p_atm is None:
+        if mode == "sealed":
+            raise InputError(f"{nm['p_atm']}: None must be given for a sealed {nm['mode']}: "
+                             "the ambient pressure / C10 (> 0)")
+        p_atm = 1.0         # vented: the ambient pressure plays no part
     for key, value in (("p_atm", p_atm), ("n", n)):
         if isinstance(value, bool) or not isinstance(value, (int, float)) \
                 or not math.isfinite(value) or not value > 0:

@@ -38,6 +38,13 @@ lifts, and the continuation cannot pass: the converged snap is there, about 6.33
 the jump traced with the default onset comes 31 % early on the coarse mesh.  Only
 stiffness / onset counts (the penetration stays within the onset).  The
 branch after the jump hardly depends on it (Pogorelov slope 0.583 at all three onsets).
+
+Unloading and the pocket: `trace_loading(..., unload_to=)` turns at delta_max and follows
+the path on with delta decreasing.  A discretisation bound to a `solver.pocket.Pocket`
+carries the gas of the pocket between a ring contact and the plane: sealed, from the
+first ring around an apex lifted by `SnapSettings.seal_lift` t (or from the turn), the
+gas's gauge pressure loads the shell and the energy balance gains the gas's energy
+(`SnapState.E_gas`); the path ends where the ring around the pocket is lost.
 """
 from dataclasses import dataclass, field
 import math
@@ -54,6 +61,7 @@ from .forms import Discretisation, discretise, strain_energy
 from .geometry import T_MIN, Cap, check_cap, check_delta_max
 from .mesh import cap_mesh, mesh_spec
 from .linear import Timer
+from .pocket import PocketLoad, seal
 
 
 @dataclass(frozen=True)
@@ -317,7 +325,6 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
                 else states[-1].ring and states[-1].apex_gap > s.seal_lift * d.capmesh.cap.t):
             # the ring closes: the gas is sealed at ambient pressure, the path goes on
             # with its stiffness (the state is the same: p = 0, no force yet)
-            from .pocket import seal
             cn = _Continuation(Interface(seal(cn.d, x), law), "frictionless", arc)
             timers.append(cn.timer)
             c = constraints(cn.d, "frictionless", [])
@@ -331,7 +338,6 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
 
 def _pocket_of(d):
     """The Pocket a discretisation is bound to, or None."""
-    from .pocket import PocketLoad
     return d.cavity.pocket if isinstance(d.cavity, PocketLoad) else None
 
 

@@ -121,8 +121,8 @@ def test_pocket_residual_and_tangent_against_finite_differences(ring):
 
 
 @pytest.mark.parametrize("kwargs, field", [
-    (dict(mode="open"), "pocket"), (dict(mode="sealed", n=0.0), "n"),
-    (dict(mode="sealed", n=-1.4), "n"), (dict(mode="sealed", p_atm=0.0), "p_atm"),
+    (dict(mode="open"), "pocket"), (dict(mode="sealed", p_atm=0.3, n=0.0), "n"),
+    (dict(mode="sealed", p_atm=0.3, n=-1.4), "n"), (dict(mode="sealed", p_atm=0.0), "p_atm"),
     (dict(mode="vented", p_atm=-0.3), "p_atm"), (dict(mode="sealed", p_atm=math.inf), "p_atm"),
     (dict(mode="sealed"), "p_atm"), (dict(mode="sealed", p_atm=0.3, n="1"), "n")])
 def test_pocket_refuses_bad_input(kwargs, field):

@@ -26,8 +26,8 @@ P_ATM = pk.p_atm_over_C10(101.325, 300.0)     # C10 0.3 MPa: p_a / C10 = 0.3378
 T, DELTA_MAX = 0.02, 0.1
 
 
-def _d(delta_max=DELTA_MAX):
-    return discretise(cap_mesh(loading_cap(T, 1.0), mesh_spec("coarser", ring_arc(delta_max))))
+def _d(delta_max=DELTA_MAX, mesh="coarser"):
+    return discretise(cap_mesh(loading_cap(T, 1.0), mesh_spec(mesh, ring_arc(delta_max))))
 
 
 def _ring_state(d, seed=0):
@@ -137,8 +137,8 @@ def test_ambient_pressure_in_units_of_C10():
         pk.p_atm_over_C10(101.325, 0.0)
 
 
-def _unloading(mode, n, unload_to, p_atm=P_ATM, **seal):
-    d = pk.bind(_d(), pk.Pocket(mode, p_atm, n))
+def _unloading(mode, n, unload_to, p_atm=P_ATM, mesh="coarser", **seal):
+    d = pk.bind(_d(mesh=mesh), pk.Pocket(mode, p_atm, n))
     settings = SnapSettings(**(seal or dict(seal_at_turn=True)))
     return trace_loading(d, DELTA_MAX, settings, unload_to=unload_to)
 
@@ -228,6 +228,18 @@ def test_sealed_pocket_at_ambient_pressure(n):
         assert p == pytest.approx(6.42e-4, abs=0.005e-4)
         assert p / P_ATM == pytest.approx(0.0019, abs=0.00005)
         assert P == pytest.approx(p * math.pi * path.states[-1].r_seal ** 2, rel=1e-4)
+
+
+@pytest.mark.slow
+def test_sealed_pocket_on_the_coarse_mesh():
+    # docs/thin-shells.md: on the coarse mesh the pocket (1.348e-2 R^3 at the turn, 5.03 t)
+    # opens at 4.68 t with P +2.93e-4, as on the coarser mesh (4.69 t)
+    path = _unloading("sealed", 1.0, -T, mesh="coarse")
+    _sealed_checks(path, 1.0, P_ATM)
+    turn = path.states[path.turn]
+    assert turn.delta / T == pytest.approx(5.03, abs=0.005)
+    assert turn.V == pytest.approx(1.348e-2, abs=0.0005e-2)
+    _opens_at(path, 4.68, 2.93e-4)
 
 
 @pytest.mark.slow

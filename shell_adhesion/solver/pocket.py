@@ -112,7 +112,7 @@ class PocketLoad:
 
     def measure(self, x):
         """(V, p, r_seal): pocket volume / R^3, gauge pressure / C10, deformed radius / R
-        of the seal's inner edge (NaN, NaN-free: V = 0 and r_seal NaN with no ring)."""
+        of the seal's inner edge (with no ring around a gap: V = 0, r_seal NaN)."""
         V, r_seal = self._pieces(x, False)[:2]
         return V, self.pressure(x), r_seal
 

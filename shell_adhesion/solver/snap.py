@@ -245,8 +245,9 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
     from there on by the same continuation (delta decreasing) to unload_to / R (< 0: a pull).
 
     A discretisation bound to a pocket (solver.pocket.bind) carries its gas: sealed, the
-    pocket seals at the first state whose contact set is a ring around the lifted apex
-    (ambient pressure at its volume then) and the path ends where the pocket opens again
+    pocket seals at the first state whose contact set is a ring around an apex lifted by
+    settings.seal_lift t, or at the turn with settings.seal_at_turn (ambient pressure at
+    its volume then) and the path ends where the pocket opens again
     (no contact ring left around a gap; resolved to settings.open_ds of arc).
 
     Ends (`SnapPath.ended_by`) at delta_max or unload_to (""), where a sealed pocket opens
@@ -280,7 +281,7 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
         try:
             xn, dn, Kn, rn, it = _correct(cn, c, x, delta, t, ds)
             if cn.d.cavity is not None and cn.d.cavity.sealed and _opens(cn, xn):
-                raise ConvergenceError("the pocket opens")
+                raise _PocketOpens("the pocket opens")
             L = math.sqrt(cn.dot(xn - x, dn - delta, xn - x, dn - delta))
             chord = ((xn - x) / L, (dn - delta) / L)
             tn = cn.tangent_at(Kn, c, chord)
@@ -290,7 +291,7 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
         except ConvergenceError as err:
             ds *= 0.5
             if (cn.d.cavity is not None and cn.d.cavity.sealed and ds < s.open_ds
-                    and (str(err) == "the pocket opens" or not _sealed_ahead(cn, x, t, ds))):
+                    and (isinstance(err, _PocketOpens) or not _sealed_ahead(cn, x, t, ds))):
                 ended_by = (f"pocket opened: the contact ring around it is lost between "
                             f"delta = {delta:.6g} R and {delta + 2 * ds * t[1]:.6g} R")
                 break
@@ -334,6 +335,10 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
         if it <= s.easy:
             ds *= s.grow
     return SnapPath(tuple(states), ended_by, _sum(timers), turn)
+
+
+class _PocketOpens(ConvergenceError):
+    """A step's state has lost the ring around the sealed pocket."""
 
 
 def _pocket_of(d):

@@ -68,6 +68,12 @@ def test_pocket_volume_against_an_independent_quadrature(ring):
     k = down[-1] + 1
     V_ref = float(np.sum(2 * np.pi * r[:k] * np.maximum(z[:k], 0) * dr[:k]))
     assert V > 0 and abs(V - V_ref) <= 1e-6 * V_ref
+    # with the gap positive from the axis to the seal (here), by parts: V = -pi int r^2 dz
+    assert np.all(z[:k] > 0)
+    dz = ((load.Z0 + u[:, 3:]) @ dN.T).ravel() / 4000
+    r_end, z_end = r[k - 1] + 0.5 * dr[k - 1], z[k - 1] + 0.5 * dz[k - 1]  # ~ the seal
+    by_parts = np.pi * r_end ** 2 * z_end - float(np.sum(np.pi * r[:k] ** 2 * dz[:k]))
+    assert abs(V - by_parts) <= 1e-6 * V
     assert abs(r_seal - r[down[-1]]) <= 1e-3
     assert not load.is_open(x) and p == 0.0
 

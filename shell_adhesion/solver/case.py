@@ -84,7 +84,8 @@ def has_hole(state: State) -> bool:
 
 def relax_from(d: Discretisation, interface: str, start: State, gamma_max: float = GAMMA_MAX,
                settings: Settings = Settings(), progress=None,
-               reach: float = 1.0, gamma_edge: float = 0.0) -> RelaxationPath:
+               reach: float = 1.0, gamma_edge: float = 0.0,
+               edge_width: float = 0.0) -> RelaxationPath:
     """Relax one loaded state until the estimated G exceeds G_SAFETY * reach * gamma_max
     (`reach` > 1 takes a path further, where its pair's G fell short: solver.request).
 
@@ -93,6 +94,7 @@ def relax_from(d: Discretisation, interface: str, start: State, gamma_max: float
     and a start that softens (dP/ddelta <= 0: the shell is buckling under its contact) is
     relaxed in steps of relaxation_step_max / relaxation_steps instead.  `progress(delta)` is
     called after each state (it may raise to end the path, e.g. on a wall-time limit).
+    `gamma_edge`, `edge_width`: the adhesive edge force it carries (path.relax).
     """
     G_stop = G_SAFETY * reach * gamma_max
     k0 = start.dP_ddelta
@@ -106,7 +108,7 @@ def relax_from(d: Discretisation, interface: str, start: State, gamma_max: float
             progress(s.delta)
         return flat_punch_G(start, s) >= G_stop
 
-    return relax(d, interface, start, stop, step, settings, gamma_edge)
+    return relax(d, interface, start, stop, step, settings, gamma_edge, edge_width)
 
 
 @dataclass(frozen=True, eq=False)

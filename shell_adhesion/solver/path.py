@@ -551,12 +551,15 @@ def _release_tensile(pb, x, delta, K, r, held, c, hist):
 
 
 def relax(d: Discretisation, interface: str, start: State, stop, step: float,
-          settings: Settings = Settings(), gamma_edge: float = 0.0) -> RelaxationPath:
+          settings: Settings = Settings(), gamma_edge: float = 0.0,
+          edge_width: float = 0.0) -> RelaxationPath:
     """Lower delta from `start` with its held nodes kept, in steps of about `step`.
 
     `gamma_edge` > 0 (gamma / (C10 R), frictionless only): the held edge carries the
     adhesive edge force (solver.edge); the path then starts with the loaded state
-    re-equilibrated under it at the same delta, and each state's U is U_E - gamma pi r^2.
+    re-equilibrated under it at the same delta, and each state's U is U_E - gamma pi r^2;
+    `edge_width` > 0 spreads the force over that arc / R inside the edge, and then r (the
+    states' `a`, their `da_ddelta` its slope) is the covered radius sqrt(<r^2>) (solver.edge).
 
     `stop(state)` ends the path when it returns True (the state is kept).  A step is
     halved while it is not energy-consistent (`step_mismatch` above
@@ -572,7 +575,7 @@ def relax(d: Discretisation, interface: str, start: State, stop, step: float,
         if interface != "frictionless":
             raise ValueError(f"gamma_edge: {gamma_edge:g} needs the frictionless interface "
                              f"(held nodes of {interface} do not slide)")
-        d = with_edge(d, held, gamma_edge)
+        d = with_edge(d, held, gamma_edge, edge_width)
     pb = _Problem(d, interface, settings, timer)
     c = constraints(d, interface, held)
     x, delta = start.x.copy(), start.delta
@@ -586,8 +589,8 @@ def relax(d: Discretisation, interface: str, start: State, stop, step: float,
         dx, dP = start.dx_ddelta, start.dP_ddelta     # the loading's, with these held nodes
     else:
         dx, dP = pb.tangent_direction(pb.assemble(x)[0], c)
-    edge_ur = d.ur(d.capmesh.outer[max(held)])      # the held edge's radial dof
-    states = [replace(_with_stiffness(start, dP, dx), da_ddelta=float(dx[edge_ur]))]
+    edge = _edge_radius(d, held)
+    states = [replace(_with_stiffness(start, dP, dx), **edge(x, dx))]
     outside = np.setdiff1d(np.arange(len(d.capmesh.outer)), held)
     h = step
     penetration = centre_lifts = False
@@ -623,7 +626,7 @@ def relax(d: Discretisation, interface: str, start: State, stop, step: float,
         try:
             s = pb.state(x, delta, r, held, -1, hist, dP, centre_off=pulled, check_J=False,
                          U=Un)
-            s = replace(s, da_ddelta=float(dx[edge_ur]))
+            s = replace(s, **edge(x, dx))
         except QualityError as err:
             ended_by = str(err)
             break
@@ -676,6 +679,15 @@ def _hermite(a, b, t):
     s = (t - t0) / L
     return ((2 * s**3 - 3 * s**2 + 1) * x0 + (s**3 - 2 * s**2 + s) * L * m0
             + (-2 * s**3 + 3 * s**2) * x1 + (s**3 - s**2) * L * m1)
+
+
+def _edge_radius(d: Discretisation, held):
+    """(x, dx/ddelta) -> {"da_ddelta": the held edge's radial slope} (no edge force, or
+    one on the edge node), or also {"a": the covered radius} of a spread edge force."""
+    if d.edge is None or len(d.edge.dofs) == 1:
+        edge_ur = d.ur(d.capmesh.outer[max(held)])
+        return lambda x, dx: {"da_ddelta": float(dx[edge_ur])}
+    return lambda x, dx: {"a": d.edge.radius(x), "da_ddelta": d.edge.slope(x, dx)}
 
 
 def edge_forces(d: Discretisation, r_int, held):

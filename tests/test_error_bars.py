@@ -126,10 +126,15 @@ def test_an_order_is_observed_only_where_each_step_adds_layers_through_the_thick
 
     def layers(t, mesh):
         return len(thickness_layers(t, mesh_spec(mesh))) - 1
-    # the thinnest shell: 1, 1, 2 layers on coarser, coarse, default; 4 on fine
-    assert [layers(0.02, m) for m in ("coarser", "coarse", "default", "fine")] == [1, 1, 2, 4]
-    assert not refines_through_thickness(0.02, "default")
-    assert refines_through_thickness(0.02, "fine")
+    # a thin shell's layers double at each level (solver.mesh.thin_shell): 1, 2, 4, 8 on
+    # coarser, coarse, default, fine (the graded rule gave 1, 1, 2, 4 at t/R 0.02 and 2,
+    # 2, 4, 7 at 0.05: no order on the default mesh); 1 on coarsest too
+    for t in (0.02, 0.05):
+        assert [layers(t, m) for m in ("coarsest", "coarser", "coarse", "default", "fine")
+                ] == [1, 1, 2, 4, 8]
+        assert refines_through_thickness(t, "default")
+        assert refines_through_thickness(t, "fine")
+        assert not refines_through_thickness(t, "coarse")   # 1, 1, 2
     # the base shell: 3, 4, 7
     assert [layers(0.15, m) for m in ("coarser", "coarse", "default")] == [3, 4, 7]
     assert refines_through_thickness(0.15, "default")

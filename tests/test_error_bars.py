@@ -127,14 +127,17 @@ def test_an_order_is_observed_only_where_each_step_adds_layers_through_the_thick
     def layers(t, mesh):
         return len(thickness_layers(t, mesh_spec(mesh))) - 1
     # a thin shell's layers double at each level (solver.mesh.thin_shell): 1, 2, 4, 8 on
-    # coarser, coarse, default, fine (the graded rule gave 1, 1, 2, 4 at t/R 0.02 and 2,
-    # 2, 4, 7 at 0.05: no order on the default mesh); 1 on coarsest too
-    for t in (0.02, 0.05):
-        assert [layers(t, m) for m in ("coarsest", "coarser", "coarse", "default", "fine")
-                ] == [1, 1, 2, 4, 8]
-        assert refines_through_thickness(t, "default")
-        assert refines_through_thickness(t, "fine")
-        assert not refines_through_thickness(t, "coarse")   # 1, 1, 2
+    # coarser, coarse, default, fine (the graded rule gave 1, 1, 2, 4 at t/R 0.02: no
+    # order on the default mesh); 1 on coarsest too
+    assert [layers(0.02, m) for m in ("coarsest", "coarser", "coarse", "default", "fine")
+            ] == [1, 1, 2, 4, 8]
+    assert refines_through_thickness(0.02, "default")
+    assert refines_through_thickness(0.02, "fine")
+    assert not refines_through_thickness(0.02, "coarse")    # 1, 1, 2
+    # t/R 0.05 (graded): 2, 2, 4 on coarser, coarse, default; 7 on fine
+    assert [layers(0.05, m) for m in ("coarser", "coarse", "default", "fine")] == [2, 2, 4, 7]
+    assert not refines_through_thickness(0.05, "default")
+    assert refines_through_thickness(0.05, "fine")
     # the base shell: 3, 4, 7
     assert [layers(0.15, m) for m in ("coarser", "coarse", "default")] == [3, 4, 7]
     assert refines_through_thickness(0.15, "default")
@@ -210,6 +213,21 @@ def test_study_error_bars_through_the_catalogue(tmp_path):
     P, e = float(ds["P_star"].squeeze()), float(ds["P_star_error"].squeeze())
     assert 0 < e < 0.05 * abs(P)
     assert np.isfinite(ds["loading_P_error"].values).any()
+    # the companions relax the answer's kind of contact front (issue 39 item 4), and their
+    # keys say so: a set relaxed for another answer never serves them
+    import json
+    from shell_adhesion.catalogue import Catalogue
+    plan = out.plan
+    answer = plan.shells[0]
+    cat = Catalogue(tmp_path / "cat")
+    family = {s.fingerprint: json.loads(cat.fetch(s.key)[1].attrs["stats"])["relaxation_family"]
+              for s in plan.all_shells}
+    cat.close()
+    for s in plan.error_shells + plan.third_shells:
+        assert s.answer == answer.fingerprint
+        assert s.key["relaxation_family"] == {"as": answer.fingerprint}
+        assert family[s.fingerprint] == family[answer.fingerprint]
+    assert "relaxation_family" not in answer.key
     again = execute(tmp_path / "eb.yaml", tmp_path / "r2", catalogue=tmp_path / "cat",
                     progress=False, workers=1)
     assert again.computed == [] and len(again.reused) == 3

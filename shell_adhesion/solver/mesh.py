@@ -93,7 +93,7 @@ def graded(length, h0, growth, hmax, uniform=0.0):
     return np.concatenate([[0.0], np.cumsum(sizes)])
 
 
-# a thin shell (the default level's graded layers at most THIN_LAYERS) has THIN_LAYERS
+# a thin shell (the default level's graded layers fewer than THIN_LAYERS) has THIN_LAYERS
 # layers on the default mesh, twice as many on each finer level and half as many on each
 # coarser one (at least 1), so every step of the family refines through the thickness
 THIN_LAYERS = 4
@@ -105,8 +105,8 @@ def _graded_layers(t, spec):
 
 def thin_shell(t: float) -> bool:
     """Whether a shell of thickness t / R takes the thin family of layers (the default
-    level's graded layers number at most THIN_LAYERS: t / R below about 0.063)."""
-    return t < 1.0 and len(_graded_layers(t, _BASE)) - 1 <= THIN_LAYERS
+    level's graded layers number fewer than THIN_LAYERS: t / R below about 0.041)."""
+    return t < 1.0 and len(_graded_layers(t, _BASE)) - 1 < THIN_LAYERS
 
 
 def thickness_layers(t: float, spec: MeshSpec) -> np.ndarray:
@@ -117,8 +117,10 @@ def thickness_layers(t: float, spec: MeshSpec) -> np.ndarray:
     fine, from `spec.layer_max`), growing by `spec.layer_growth` from the outer surface:
     the graded rule keeps 1-2 layers on the coarse levels of a thin shell (t/R 0.02: 1, 1,
     2 on coarser, coarse, default), whose steps then refine the meridian only and measure
-    no order (solver.error_bars.refines_through_thickness).  Where the graded default has
-    THIN_LAYERS layers (t/R 0.041-0.063) the default mesh is the same by either rule."""
+    no order (solver.error_bars.refines_through_thickness).  From t/R 0.041 (the shipped
+    pull-off maps' grids start at 0.05) every mesh is the graded one, also where its
+    coarse levels keep the layers (t/R 0.041-0.06: 2, 2, 4 on coarser, coarse, default:
+    those bars take the assumed order)."""
     if not thin_shell(t):
         return _graded_layers(t, spec)
     level = np.log2(_BASE.layer_max / spec.layer_max)

@@ -283,3 +283,26 @@ def test_thin_shell_error_bar_is_useful():
     assert distance <= 2 * bar and bar <= 3 * distance and bar < 0.02 * abs(po["P_N"])
     within("thin shell P*", po["P_N"], -0.68081, 0.0, floor=1e-5)
     within("thin shell P* error bar", bar, 0.00485, 0.0, floor=1e-5)
+
+
+@pytest.mark.slow
+def test_thinnest_shell_error_bar_is_useful():
+    """Issue 39 item 4: t/R 0.02, h/R 0.2 (R 20, t 0.4, h 4 mm, C10 0.3 MPa, gamma 30 J/m^2,
+    gamma/(C10 R) 0.005), `solve_case` on the default mesh: its layers double at each
+    level (1, 2, 4 on coarser, coarse, default; 8 on fine), so the P* bar uses the observed
+    order (measured 3.6, credited as 1), holds the fine mesh's P* within 2 bars, is at most
+    3 times its distance to it and below 2 % of P*.  Before (1, 1, 2 layers): -3.06588 +-
+    0.032 N, order 1 assumed.  Measured now: -3.07537 +- 0.00237 N, fine (8 layers, 24,837
+    dofs, 35 min on a loaded machine) -3.07769 N: 1.02 times the distance.  The fine mesh takes
+    minutes (`python benchmarks/error_bars.py 20 0.4 4 0.3 30`)."""
+    import shell_adhesion as sa
+    args = (20.0, 0.4, 4.0, 0.3, [30.0])
+    po = sa.solve_case(*args, progress=False).to_dict()["pull_off"][0]["fixed_load"]
+    fine = sa.solve_case(*args, mesh="fine", progress=False, error_bars=False)
+    P_fine = fine.to_dict()["pull_off"][0]["fixed_load"]["P_N"]
+    bar, distance = po["P_N_error"], abs(po["P_N"] - P_fine)
+    print("t/R 0.02 P*", po["P_N"], "+-", bar, po["P_N_rule"], "fine", P_fine)
+    assert po["P_N_rule"].startswith("observed order")
+    assert distance <= 2 * bar and bar <= 3 * distance and bar < 0.02 * abs(po["P_N"])
+    within("t/R 0.02 P*", po["P_N"], -3.07537, 0.0, floor=1e-5)
+    within("t/R 0.02 P* error bar", bar, 0.00236, 0.0, floor=1e-5)

@@ -27,10 +27,11 @@ def test_quality_limit_stops_the_loading_and_keeps_its_states(base_coarse):
 
 def test_thin_frictionless_stall_keeps_its_states():
     """t/R = 0.02, frictionless: the contact front's event moves behind the last state
-    near delta = 0.084 R (coarse mesh; 0.078 R on the default mesh)."""
+    near delta = 0.044 R (coarse mesh, 2 element layers through the thickness, 93 states;
+    0.084 R with the 1 layer it had before issue 39)."""
     _, path = solve_loading(0.02, 1.0, "frictionless", "coarse", 0.25, stop_at_limit=True)
     assert "stalled" in path.stopped_by
-    assert 0.05 < path.delta_reached < 0.25
+    assert 0.04 < path.delta_reached < 0.25
     assert np.all(np.isfinite(path.array("P"))) and len(path.states) > 20
 
 

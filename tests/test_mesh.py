@@ -44,3 +44,30 @@ def test_bad_geometry(t, h, rule):
 def test_solid_cap_allows_any_depth():
     check_cap(1.0, 0.3)
     assert Cap(1.0, 1.0).volume == pytest.approx(2 * math.pi / 3)
+
+
+def test_thin_shell_layers_halve_with_the_family():
+    """A thin shell (t/R below about 0.041: solver.mesh.thin_shell, where the graded rule
+    gives the default mesh fewer than 4 layers) has 4 layers on the default mesh, twice as
+    many per finer level and half as many per coarser one, each growing by the level's
+    layer_growth from the outer surface; a thicker shell (the shipped maps' grids from
+    t/R 0.05, the base shell) keeps the graded rule on every level."""
+    from shell_adhesion.solver.mesh import (THIN_LAYERS, _graded_layers, thickness_layers,
+                                            thin_shell)
+    assert thin_shell(0.01) and thin_shell(0.02) and thin_shell(0.04)
+    assert not thin_shell(0.041) and not thin_shell(0.05) and not thin_shell(1.0)
+    for t in (0.01, 0.02, 0.04):
+        depth = {m: thickness_layers(t, mesh_spec(m)) for m in ("coarse", "default", "fine")}
+        assert [len(x) - 1 for x in depth.values()] == [THIN_LAYERS // 2, THIN_LAYERS,
+                                                        2 * THIN_LAYERS]
+        for x in depth.values():
+            assert x[0] == 0 and x[-1] == pytest.approx(t, rel=1e-14)
+            assert np.all(np.diff(x, 2) > 0)         # growing inward
+        # each level about halves the first layer and the largest one
+        for coarse, fine in (("coarse", "default"), ("default", "fine")):
+            ratio = np.diff(depth[coarse])[[0, -1]] / np.diff(depth[fine])[[0, -1]]
+            assert np.all((1.7 < ratio) & (ratio < 2.4))
+    for t in (0.041, 0.05, 0.06, 0.15, 0.5):   # the graded rule, on every level
+        for m in ("coarsest", "coarser", "coarse", "default", "fine", "finer"):
+            assert np.array_equal(thickness_layers(t, mesh_spec(m)),
+                                  _graded_layers(t, mesh_spec(m)))

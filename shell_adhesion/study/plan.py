@@ -9,7 +9,12 @@ them), to the study's depth.  Only a set fitted to the same
 request serves it from the catalogue, so the results do not depend on what else the
 catalogue holds.
 With error bars (the study's default), each shell has a companion on the next coarser mesh
-(`Plan.error_shells`): a set of its own, keyed and stored like any other.
+(`Plan.error_shells`) and one on the mesh after it (`Plan.third_shells`): sets of their
+own, keyed and stored like any other.  A companion relaxes contact fronts ending on the
+node type its answer's set relaxed (solver.case.relaxation_starts: the two types converge
+from different sides, so a mix measures no order); that type comes out of the answer's
+loading, so the companion's key names its answer's set (`relaxation_family`: {"as":
+fingerprint}), and study.run opens it once the answer's set is stored.
 
 Another solid (`solver.material.Material`) enters the plan by its ratios to C10 (C01/C10,
 C20/C10, C30/C10, Jm, D1 C10): they are FE dimensions and part of every shell's key, while
@@ -49,6 +54,8 @@ class Shell:
     fingerprint: str
     material: Material = NEO_HOOKE
     cavity: Cavity = OPEN       # what fills the cavity (pressures / C10)
+    answer: str = None          # an error-bar companion: its answer's set's fingerprint,
+    #                             whose contact-front node type it relaxes
 
     @property
     def gamma_max_hat(self) -> float:
@@ -172,15 +179,18 @@ def make_plan(study: Study, settings: Settings = Settings(),
             need.items(), key=lambda kv: kv[0][:3] + (tuple(kv[0][3].as_dict().values()),)):
         m = solids[values]
 
-        def shell(mesh):
+        def shell(mesh, answer=None):
             key = pathset_key(t, h, study.interface, mesh, study.delta_max_over_R,
                               gamma_bucket(g), settings, m, cavity)
-            return Shell(t, h, g, key, fingerprint(key), m, cavity)
+            if answer is not None:      # relaxed on the answer's node type (not known yet)
+                key["relaxation_family"] = {"as": answer}
+            return Shell(t, h, g, key, fingerprint(key), m, cavity, answer)
 
         shells.append(shell(study.mesh))
         if study.error_bars:    # the same shell on the next two coarser meshes: sets of their own
-            errors.append(shell(coarser_mesh(study.mesh)))
-            third.append(shell(coarser_mesh(coarser_mesh(study.mesh))))
+            answer = shells[-1].fingerprint
+            errors.append(shell(coarser_mesh(study.mesh), answer))
+            third.append(shell(coarser_mesh(coarser_mesh(study.mesh)), answer))
     ratio_axes = ({r: tuple(sorted({p[4 + j] for p in points})) for j, r in enumerate(swept)}
                   if swept else None)
     cavity_axes = ({c: tuple(sorted({p[4 + len(swept) + j] for p in points}))

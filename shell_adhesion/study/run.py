@@ -118,10 +118,12 @@ def _deadline(timeout_s, what):
 
 
 def loading_task(t, h, interface, mesh, delta_max, settings, source_sha256=None,
-                 material=NEO_HOOKE, timeout_s=None, cavity=OPEN, uniform=None, a_stop=None):
+                 material=NEO_HOOKE, timeout_s=None, cavity=OPEN, uniform=None, a_stop=None,
+                 family=None):
     """Loading path of one shell of `material` and `cavity` on the mesh even out to
     `uniform` of arc, to delta_max or the contact radius `a_stop` (solver.request):
-    (loading without displacement fields, relaxation starts, info, loading views); a closed
+    (loading without displacement fields, relaxation starts ending on the node type
+    `family`, None: the larger, solver.case.relaxation_starts, info, loading views); a closed
     cavity's info holds `cavity_lift` (solver.case.cavity_lift), which its relaxation tasks
     need.  TaskTimeout past `timeout_s` seconds."""
     _check_source(source_sha256)
@@ -129,7 +131,7 @@ def loading_task(t, h, interface, mesh, delta_max, settings, source_sha256=None,
     d, loading = solve_loading(t, h, interface, mesh, delta_max, settings,
                                _deadline(timeout_s, "the loading"), material, cavity=cavity,
                                stop_at_limit=True, uniform=uniform, a_stop=a_stop)
-    starts = relaxation_starts(loading, d.capmesh)
+    starts = relaxation_starts(loading, d.capmesh, family)
     # the driver needs the loading's numbers only: its fields stay here (a shell's states
     # would otherwise be held by the driver for the whole run)
     light = replace(loading, states=tuple(replace(s, x=s.x[:0], dx_ddelta=None)
@@ -295,6 +297,7 @@ class _Job:
     opened: bool = False        # its first loading submitted (study.run: a bounded few at once)
     done: bool = False
     expected: int = 0           # relaxation paths the cost model expects before its loading
+    family: str = None          # a companion: its answer's node type (opened once known)
 
 
 @dataclass
@@ -333,22 +336,57 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
     owner = {}                  # future -> (job, relaxation index or None)
     pending = set()
 
+    answers = {s.fingerprint: s for s in plan.shells}
+    families = {}               # answer fingerprint -> the node type its set relaxed
+
+    def answer_family(job):
+        """(node type, None) of the set of a companion's answer; (None, reason) where
+        that set failed; (None, None) while it is not stored."""
+        fp = job.shell.answer
+        if fp in families:
+            return families[fp], None
+        if fp in tally.failed:
+            return None, f"no error bars: its answer's set failed ({tally.failed[fp]})"
+        if fp in tally.computed:
+            families[fp] = tally.computed[fp].stats.get("relaxation_family")
+            return families[fp], None
+        if any(j.shell.fingerprint == fp for j in jobs):
+            return None, None       # computed here: wait for it
+        hit = cat.fetch(answers[fp].key)    # stored before, or by another run
+        if hit is None:
+            return None, None
+        families[fp] = json.loads(hit[1].attrs["stats"]).get("relaxation_family")
+        return families[fp], None
+
     def open_more():
         """Open waiting shells up to OPEN_SHELLS_PER_WORKER per worker (the workers of
-        now: an external cluster may grow)."""
+        now: an external cluster may grow); an error-bar companion once its answer's set
+        is stored (it relaxes that set's node type: study.plan)."""
         workers = len(client.scheduler_info().get("workers", {}))
         in_progress = sum(1 for j in jobs if j.opened and not j.done)
-        for _ in range(min(len(waiting), OPEN_SHELLS_PER_WORKER * max(1, workers) - in_progress)):
-            job = waiting.pop()
-            job.opened, job.t0 = True, time.perf_counter()
-            load(job)
+        room = OPEN_SHELLS_PER_WORKER * max(1, workers) - in_progress
+        for job in list(reversed(waiting)):     # in order: the answers come first
+            family, why = answer_family(job) if job.shell.answer else (None, None)
+            if why is not None:
+                waiting.remove(job)
+                job.opened = job.done = True
+                tally.failed[job.shell.fingerprint] = why
+                if claims is not None:
+                    claims.settled(job.shell.fingerprint)
+                progress.update("loading paths", advance=1)
+                progress.update("relaxation paths", advance=1)
+            elif room > 0 and (job.shell.answer is None or job.shell.answer in families):
+                waiting.remove(job)
+                job.opened, job.t0, job.family = True, time.perf_counter(), family
+                room -= 1
+                load(job)
 
     def load(job):
         s, fit = job.shell, job.fit
         f = client.submit(loading_task, s.t_over_R, s.h_over_R, st.interface, s.key["mesh"],
                           fit.delta_max, plan.settings, s.key["solver_source"],
                           s.material, st.task_timeout_s, pure=False, cavity=s.cavity,
-                          uniform=fit.uniform, a_stop=fit.a_stop,
+                          uniform=fit.uniform, a_stop=fit.a_stop, family=job.family,
                           key=f"loading-{s.fingerprint[:12]}-{uuid.uuid4().hex[:8]}")
         owner[f] = (job, None)
         pending.add(f)
@@ -499,10 +537,22 @@ def compute(plan: Plan, shells, cat: Catalogue, client, tally: Tally, progress: 
                 fail(job, _reason("store", e))
 
     unreachable_since = None
-    while pending:
+    waited = time.monotonic()
+    while pending or waiting:
         interrupt.check()           # Ctrl-C is taken here, never inside dask or a write
         if claims is not None:
             claims.refresh()
+        if not pending:             # companions whose answers another run computes
+            if time.monotonic() - waited > sharing.WAIT_LIMIT_S:
+                for job in waiting:
+                    tally.failed[job.shell.fingerprint] = (
+                        "no error bars: its answer's set was not stored in "
+                        f"{sharing.WAIT_LIMIT_S:g} s; run again")
+                break
+            time.sleep(sharing.POLL_S)
+            open_more()
+            continue
+        waited = time.monotonic()
         try:
             done, _ = wait(list(pending), timeout=1.0, return_when="FIRST_COMPLETED")
         except TimeoutError:

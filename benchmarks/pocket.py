@@ -17,7 +17,7 @@ Run: python benchmarks/pocket.py [--t 0.02] [--mesh coarser] [--delta-max 5]
 pressures in kPa; --seal ring: the gas is sealed at the first ring whose apex is lifted
 by more than --seal-lift, turn: at the turn to the unloading; --interface no_slip: the
 contact sticks, from the turn (--stick turn, pressed frictionless past the snap) or from
-the first touch, with cos_min 0.99 (tests/test_stick.py).)  Bad input: one line, exit 2.
+the first touch (tests/test_stick.py).)  Bad input: one line, exit 2.
 """
 import argparse
 import dataclasses
@@ -68,7 +68,7 @@ def main(argv=None):
     settings = dataclasses.replace(SnapSettings(), seal_at_turn=a.seal == "turn",
                                    seal_lift=a.seal_lift)
     if a.interface == "no_slip":
-        settings = dataclasses.replace(settings, stick_at_turn=a.stick == "turn", cos_min=0.99)
+        settings = dataclasses.replace(settings, stick_at_turn=a.stick == "turn")
     t0 = time.perf_counter()
     path = trace_loading(d, a.delta_max * T, settings, unload_to=a.unload_to * T,
                          interface=a.interface)

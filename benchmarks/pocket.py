@@ -11,10 +11,13 @@ radius), the least gauge pressure, and the energy balance (work of P against str
 penalty and gas energy).
 Run: python benchmarks/pocket.py [--t 0.02] [--mesh coarser] [--delta-max 5]
 [--unload-to -1] [--pocket sealed|vented] [--n 1.0] [--p-atm-kPa 101.325]
-[--C10-kPa 300] [--seal turn|ring] [--seal-lift 0.1] [--every 5] [--figure PNG]
+[--C10-kPa 300] [--seal turn|ring] [--seal-lift 0.1] [--interface frictionless|no_slip]
+[--stick turn|touch] [--every 5] [--figure PNG]
 (--delta-max, --unload-to and --seal-lift in thicknesses t; p_a / C10 from the two
 pressures in kPa; --seal ring: the gas is sealed at the first ring whose apex is lifted
-by more than --seal-lift, turn: at the turn to the unloading.)  Bad input: one line, exit 2.
+by more than --seal-lift, turn: at the turn to the unloading; --interface no_slip: the
+contact sticks, from the turn (--stick turn, pressed frictionless past the snap) or from
+the first touch (tests/test_stick.py).)  Bad input: one line, exit 2.
 """
 import argparse
 import dataclasses
@@ -26,6 +29,7 @@ import numpy as np
 
 from shell_adhesion.errors import InputError
 from shell_adhesion.solver import pocket as pk
+from shell_adhesion.solver.contact import INTERFACES
 from shell_adhesion.solver.forms import discretise
 from shell_adhesion.solver.mesh import cap_mesh, mesh_spec
 from shell_adhesion.solver.snap import SnapSettings, loading_cap, ring_arc, trace_loading
@@ -44,11 +48,16 @@ def main(argv=None):
     ap.add_argument("--seal", choices=("turn", "ring"), default="turn")
     ap.add_argument("--seal-lift", type=float, default=SnapSettings.seal_lift,
                     help="in thicknesses t")
+    ap.add_argument("--interface", default="frictionless")
+    ap.add_argument("--stick", choices=("turn", "touch"), default="turn")
     ap.add_argument("--every", type=int, default=5)
     ap.add_argument("--figure", default=None, help="draw P and the gauge pressure to this PNG")
     a = ap.parse_args(argv)
     T = a.t
     try:
+        if a.interface not in INTERFACES:
+            raise InputError(f"--interface: {a.interface!r} must be one of "
+                             f"{', '.join(INTERFACES)}")
         p_atm = pk.p_atm_over_C10(a.p_atm_kPa, a.C10_kPa)
         pocket = pk.Pocket(a.pocket, p_atm, a.n)
         d = discretise(cap_mesh(loading_cap(T, 1.0), mesh_spec(a.mesh, ring_arc(a.delta_max * T))))
@@ -58,11 +67,16 @@ def main(argv=None):
     d = pk.bind(d, pocket)
     settings = dataclasses.replace(SnapSettings(), seal_at_turn=a.seal == "turn",
                                    seal_lift=a.seal_lift)
+    if a.interface == "no_slip":
+        settings = dataclasses.replace(settings, stick_at_turn=a.stick == "turn")
     t0 = time.perf_counter()
-    path = trace_loading(d, a.delta_max * T, settings, unload_to=a.unload_to * T)
+    path = trace_loading(d, a.delta_max * T, settings, unload_to=a.unload_to * T,
+                         interface=a.interface)
     wall = time.perf_counter() - t0
     print(f"t/R = {T:g}, h/R = 1, {a.mesh} mesh, {d.ndof} dofs; pocket {a.pocket}, n = "
-          f"{a.n:g}, p_a/C10 = {p_atm:.4g} ({a.p_atm_kPa:g} kPa / {a.C10_kPa:g} kPa), sealed "
+          f"{a.n:g}, {a.interface}"
+          + (f" (sticking from the {a.stick})" if a.interface == "no_slip" else "")
+          + f", p_a/C10 = {p_atm:.4g} ({a.p_atm_kPa:g} kPa / {a.C10_kPa:g} kPa), sealed "
           f"at the {'turn' if a.seal == 'turn' else f'first ring lifted > {a.seal_lift:g} t'}")
     for j in path.jumps():
         print(f"jump at delta = {j.delta / T:.4f} t: P {j.P_from:.4e} -> {j.P_to:.4e}; "
@@ -102,7 +116,8 @@ def main(argv=None):
         P = path.array("P")[path.turn:]
         print(f"least P along the unloading: {P.min():+.4e} C10 R^2")
     W, U, Pi, E = path.work(), path.array("U"), path.array("Pi"), path.array("E_gas")
-    miss = W - U - Pi - E
+    J = np.concatenate([[0.0], np.cumsum(path.array("anchor_jump"))[:-1]])
+    miss = W - U - Pi - E + J
     print(f"energy: max |W - U - Pi - E_gas| / max U = {np.abs(miss).max() / U.max():.2e}"
           + (f" (over the sealed part, from its first state: "
              f"{np.abs(miss[k:] - miss[k]).max() / U.max():.2e})" if k is not None else "")

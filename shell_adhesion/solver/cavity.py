@@ -204,8 +204,9 @@ class CavityLoad:
 
 def gas_volume(p, V0, p0, p_atm, n):
     """(V, dV/dp): the volume / R^3 at which a gas sealed at volume V0 and gauge p0 (ambient
-    p_atm, p_abs V^n constant; pressures / C10) has gauge pressure p."""
-    ratio = (p0 + p_atm) / (p + p_atm)
+    p_atm, p_abs V^n constant; pressures / C10) has gauge pressure p.  An iterate with
+    p_abs < 0 and n not 1 gives NaN (a failed Newton step), not a complex number."""
+    ratio = (p0 + p_atm) / np.float64(p + p_atm)
     V = V0 * ratio ** (1.0 / n)
     return V, -V / (n * (p + p_atm))
 

@@ -204,13 +204,26 @@ class Interface:
         return self.d.capmesh.nodes[0, outer] + x[self.d.ur(outer)]
 
     def _slips(self, x, anchors):
-        """Radial slips / R at the quadrature points, (n_edges, Q)."""
+        """Radial slips / R at the quadrature points, (n_edges, Q), from anchors per outer
+        node (interpolated along the edge like r) or per quadrature point ((n_edges, Q),
+        `point_anchors_at`)."""
         anchors = np.asarray(anchors, dtype=float)
+        n_e, n_q = self.edges.shape[1], GAUSS_POINTS
+        if anchors.shape == (n_e, n_q):
+            return self._points(x)[0] - anchors
         if anchors.shape != (len(self.d.capmesh.outer),):
             raise ValueError(f"anchors: shape {anchors.shape} must be "
-                             f"({len(self.d.capmesh.outer)},), one per outer node")
+                             f"({len(self.d.capmesh.outer)},), one per outer node, or "
+                             f"({n_e}, {n_q}), one per quadrature point")
         s_n = self.radii(x)[self.edge_outer] - anchors[self.edge_outer]
         return s_n.T @ self._quadrature[0]
+
+    def _mixed(self, g, s):
+        """The law's mixed potential and its derivatives (`mixed`'s tuple): the law's own
+        `mixed(beta, g, s)` if it has one (snap.PenaltyContact: a sticking penalty),
+        else the mixed-mode cohesive law."""
+        own = getattr(self.law, "mixed", None)
+        return own(self.beta, g, s) if own is not None else mixed(self.law, self.beta, g, s)
 
     def _history(self, anchors):
         """Check that anchors come with the mixed-mode law and only with it."""
@@ -261,8 +274,7 @@ class Interface:
         """Pi / (C10 R^3); `anchors` with the mixed-mode law only."""
         self._history(anchors)
         r, z, dr = self._points(x)
-        phi = (self.law(z)[0] if anchors is None
-               else mixed(self.law, self.beta, z, self._slips(x, anchors))[0])
+        phi = self.law(z)[0] if anchors is None else self._mixed(z, self._slips(x, anchors))[0]
         return float(2 * np.pi * np.sum(phi * r * dr * self._quadrature[2]))
 
     def residual(self, x, anchors=None) -> np.ndarray:
@@ -290,7 +302,7 @@ class Interface:
         Phi (N_a r' + r N_a') its Phi_s term."""
         N, dN, w = self._quadrature
         r, z, dr = self._points(x)
-        Phi, Pg, Ps, Pgg, Pgs, Pss = mixed(self.law, self.beta, z, self._slips(x, anchors))
+        Phi, Pg, Ps, Pgg, Pgs, Pss = self._mixed(z, self._slips(x, anchors))
         c = 2 * np.pi * w
         area = c * r * dr                                   # (e, q): 2 pi w r r'
         G = N[:, None, :] * dr[None] + dN[:, None, :] * r[None]     # d(r r')/dr_a
@@ -349,6 +361,17 @@ def anchors_at(iface: Interface, x, anchors, held) -> np.ndarray:
     free[np.asarray(held, dtype=int)] = True
     out[free] = iface.radii(x)[free]
     return out
+
+
+def point_anchors_at(iface: Interface, x, anchors=None) -> np.ndarray:
+    """Anchors per quadrature point ((n_edges, Q), deformed radii / R) after the converged
+    state x: a point off the plane (gap >= 0) takes its radius, one in contact keeps its
+    anchor (the radius it had at the last converged state before it touched); None: every
+    point takes its radius."""
+    r, z, _ = iface._points(x)
+    if anchors is None:
+        return r
+    return np.where(z >= 0.0, r, np.asarray(anchors, dtype=float))
 
 
 def total(iface: Interface, x):

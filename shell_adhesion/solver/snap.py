@@ -45,8 +45,22 @@ carries the gas of the pocket between a ring contact and the plane: sealed, from
 first ring around an apex lifted by `SnapSettings.seal_lift` t (or from the turn), the
 gas's gauge pressure loads the shell and the energy balance gains the gas's energy
 (`SnapState.E_gas`); the path ends where the ring around the pocket is lost.
+
+Sticking (`interface="no_slip"`): a quadrature point of the outer surface in contact is
+held radially at its radius at the last converged state before it touched, by a
+tangential penalty of the normal one's stiffness whose weight rises with the penetration
+as the normal slope does (`PenaltyContact.mixed`; the anchors per quadrature point,
+`cohesive.point_anchors_at`, move only where a point is off the plane, where the
+tangential penalty and its first two derivatives vanish, so the path stays conservative
+and `SnapState.anchor_jump` is 0).  With gamma = 0 it carries no tension: a point lets go
+as it lifts off.  `SnapSettings.stick_at_turn`: frictionless through the snap, sticking
+from the turn.  A step whose chord leaves the tangents at its two ends (both agreeing)
+cut across a loop of the path where the stuck ring peels; sticking, it is refused (the
+step halves down to ds_corner), else the energy the ring stored is lost with the loop
+(SnapSettings.cos_min_stick).
 """
 from dataclasses import dataclass, field
+import dataclasses
 import math
 import time
 
@@ -55,8 +69,8 @@ import numpy as np
 from shell_adhesion.errors import ConvergenceError, InputError
 
 from .arclength import ArcSettings, _Continuation, work as arc_work
-from .cohesive import Interface, penalty
-from .contact import constraints, gaps, rim_load
+from .cohesive import Interface, penalty, point_anchors_at
+from .contact import INTERFACES, constraints, gaps, rim_load
 from .forms import Discretisation, discretise, strain_energy
 from .geometry import T_MIN, Cap, check_cap, check_delta_max
 from .mesh import cap_mesh, mesh_spec
@@ -84,6 +98,25 @@ class PenaltyContact:
     def __call__(self, g):
         return penalty(np.asarray(g, dtype=float), self.stiffness, self.onset)
 
+    def mixed(self, beta, g, s):
+        """The sticking penalty (no_slip): the normal penalty plus a tangential one,
+        1/2 beta k w(g) s^2, on the radial slip s / R of a point from its anchor (the
+        radius where it touched); w = 10 u^3 - 15 u^4 + 6 u^5, u = clip(-g / onset, 0, 1),
+        rises with the penetration as the normal slope does (w = 1 beyond the onset, 0 off
+        the plane with its first two derivatives: a point that lifts off carries nothing).
+        (Phi, Phi_g, Phi_s, Phi_gg, Phi_gs, Phi_ss) as cohesive.mixed: Phi_g the normal
+        traction (> 0 attractive), Phi_s the tangential one (opposes s)."""
+        g, s = np.asarray(g, dtype=float), np.asarray(s, dtype=float)
+        e, k = self.onset, beta * self.stiffness
+        u = np.clip(-g / e, 0.0, 1.0)
+        w = u ** 3 * (10 - 15 * u + 6 * u * u)
+        w_g = -30 * u * u * (1 - u) ** 2 / e
+        w_gg = 60 * u * (1 - u) * (1 - 2 * u) / (e * e)
+        pe, ps, pk = self(g)
+        half = 0.5 * k * s * s
+        return (pe + half * w, ps + half * w_g, k * w * s, pk + half * w_gg, k * w_g * s,
+                k * w)
+
 
 @dataclass(frozen=True)
 class SnapSettings:
@@ -100,6 +133,11 @@ class SnapSettings:
     grow: float = 1.5          # step growth after an easy step
     easy: int = 4              # ... one of at most this many Newton iterations
     cos_min: float = 0.95      # least cosine between the tangents of consecutive states
+    cos_min_stick: float = 0.99  # ... while the contact sticks, also between the tangents
+    #                            and the chord (the ring rolls by points touching and
+    #                            peeling: kinks of P(delta) that coarser steps integrate
+    #                            badly; vented unloading to 3 t: the work of P misses
+    #                            U + Pi by 1.4e-4 of max U at 0.95, 7.9e-5 at 0.99)
     max_iter: int = 12         # Newton iterations per corrector
     tol: float = 1e-9          # force residual relative to the largest reaction (at the
     #                            snap's fold of t/R 0.02, coarser mesh, 1e-10 is below the
@@ -111,6 +149,9 @@ class SnapSettings:
     #                            lifted by more than this many thicknesses (the soft
     #                            penalty lifts the flattened centre by 1e-3 t: no pocket)
     seal_at_turn: bool = False  # ... or at the turn to the unloading (press, then seal)
+    stick_at_turn: bool = False  # interface no_slip: the contact sticks from the turn to
+    #                            the unloading (frictionless before: press past the snap,
+    #                            then grip), not from the first touch
     onset: float = 1e-4        # ... and its onset / R: the contact force rises as the
     #                            square of the penetration over this depth.  The sharpest
     #                            the continuation passes the snap with (t/R 0.02; 4e-5
@@ -142,6 +183,11 @@ class SnapState:
     r_seal: float = math.nan
     E_gas: float = 0.0
     sealed: bool = False
+    # no_slip: the sticking penalty's energy with the anchors updated at this state minus
+    # Pi (C10 R^3; the path after it starts from that energy, as ArcState.anchor_jump).
+    # Anchors change only where a point is off the plane, where the tangential penalty
+    # and its derivatives vanish: 0 by construction, recorded to be checked
+    anchor_jump: float = 0.0
 
     @property
     def ring(self) -> bool:
@@ -239,7 +285,8 @@ def contact_set(iface: Interface, x) -> tuple:
 
 
 def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = SnapSettings(),
-                  progress=None, unload_to: float = None) -> SnapPath:
+                  progress=None, unload_to: float = None,
+                  interface: str = "frictionless") -> SnapPath:
     """The frictionless loading without adhesion from delta = 0 to delta_max / R, by arc
     length through every fold (module docstring), and, with `unload_to`, the unloading
     from there on by the same continuation (delta decreasing) to unload_to / R (< 0: a pull).
@@ -252,17 +299,28 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
 
     Ends (`SnapPath.ended_by`) at delta_max or unload_to (""), where a sealed pocket opens
     ("pocket opened ..."), or when a step fails below settings.ds_min, or at
-    settings.max_states states.  `progress(state)` is called after each state if given."""
+    settings.max_states states.  `progress(state)` is called after each state if given.
+
+    `interface` the tangential contact (contact.INTERFACES): "frictionless", or
+    "no_slip": a quadrature point in contact is held radially at its radius at the last
+    converged state before it touched, by a tangential penalty of the normal one's
+    stiffness (`PenaltyContact.mixed`; anchors per quadrature point, updated at converged
+    states, `cohesive.point_anchors_at`); it lets go as it lifts off (gamma = 0: the
+    contact carries no tension)."""
     if not (math.isfinite(delta_max) and delta_max > 0):
         raise ValueError(f"delta_max: {delta_max!r} must be a finite number > 0 (units of R)")
     if unload_to is not None and not (math.isfinite(unload_to) and unload_to < delta_max):
         raise ValueError(f"unload_to: {unload_to!r} must be a finite number < delta_max "
                          f"({delta_max:g} R)")
+    _check_interface(interface)
     s = settings
     law = PenaltyContact(s.stiffness, s.onset)
+    beta = 1.0 if interface == "no_slip" and not s.stick_at_turn else None
     pocket = _pocket_of(d)
     arc = ArcSettings(tol=s.tol, max_iter=s.max_iter)
-    cn = _Continuation(Interface(d, law), "frictionless", arc)
+    cn = _Continuation(Interface(d, law, beta), "frictionless", arc)
+    if beta is not None:
+        cn.anchors = point_anchors_at(cn.iface, np.zeros(d.ndof))
     timers = [cn.timer]
     c = constraints(d, "frictionless", [])
     outer_z = d.uz(d.capmesh.outer[cn.candidates])
@@ -285,9 +343,15 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
             L = math.sqrt(cn.dot(xn - x, dn - delta, xn - x, dn - delta))
             chord = ((xn - x) / L, (dn - delta) / L)
             tn = cn.tangent_at(Kn, c, chord)
-            if cn.dot(*tn, *t) < s.cos_min and ds > s.ds_corner:
+            cos_min = s.cos_min if beta is None else s.cos_min_stick
+            if cn.dot(*tn, *t) < cos_min and ds > s.ds_corner:
                 raise ConvergenceError("the tangent turned by more than "
-                                       f"{math.degrees(math.acos(s.cos_min)):.0f} degrees")
+                                       f"{math.degrees(math.acos(cos_min)):.0f} degrees")
+            if beta is not None and cn.dot(*tn, *chord) < cos_min and ds > s.ds_corner:
+                # sticking: both tangents agree but the chord does not: the step cut
+                # across a loop of the path (the stuck ring peeling)
+                raise ConvergenceError("the chord left the tangents by more than "
+                                       f"{math.degrees(math.acos(cos_min)):.0f} degrees")
         except ConvergenceError as err:
             ds *= 0.5
             if (cn.d.cavity is not None and cn.d.cavity.sealed and ds < s.open_ds
@@ -310,6 +374,11 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
         now = time.perf_counter()
         states.append(_state(cn, x, delta, K, r, t, it, now - clock, slope))
         clock = now
+        if cn.anchors is not None:
+            cn.anchors = point_anchors_at(cn.iface, x, cn.anchors)
+            jump = cn.iface.energy(x, cn.anchors) - states[-1].Pi
+            if jump != 0.0:
+                states[-1] = dataclasses.replace(states[-1], anchor_jump=jump)
         if progress is not None:
             progress(states[-1])
         if turn < 0 and delta >= delta_max:
@@ -321,12 +390,21 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
         elif turn >= 0 and delta <= unload_to:
             ended_by = ""
             break
-        if pocket is not None and pocket.sealed and not cn.d.cavity.sealed and (
-                turn == len(states) - 1 if s.seal_at_turn
-                else states[-1].ring and states[-1].apex_gap > s.seal_lift * d.capmesh.cap.t):
-            # the ring closes: the gas is sealed at ambient pressure, the path goes on
-            # with its stiffness (the state is the same: p = 0, no force yet)
-            cn = _Continuation(Interface(seal(cn.d, x), law), "frictionless", arc)
+        seals = pocket is not None and pocket.sealed and not cn.d.cavity.sealed and (
+            turn == len(states) - 1 if s.seal_at_turn
+            else states[-1].ring and states[-1].apex_gap > s.seal_lift * d.capmesh.cap.t)
+        sticks = interface == "no_slip" and beta is None and turn == len(states) - 1
+        if seals or sticks:
+            # the ring closes: the gas is sealed at ambient pressure, and / or (at the
+            # turn, stick_at_turn) the contact starts sticking where it is; the path goes
+            # on with the new stiffness (the state is the same: p = 0, no slip, no force)
+            anchors = cn.anchors
+            if sticks:
+                beta = 1.0
+                anchors = point_anchors_at(cn.iface, x)
+            cn = _Continuation(Interface(seal(cn.d, x) if seals else cn.d, law, beta),
+                               "frictionless", arc)
+            cn.anchors = anchors
             timers.append(cn.timer)
             c = constraints(cn.d, "frictionless", [])
             K, r = cn.linearise(x)
@@ -335,6 +413,11 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
         if it <= s.easy:
             ds *= s.grow
     return SnapPath(tuple(states), ended_by, _sum(timers), turn)
+
+
+def _check_interface(interface):
+    if interface not in INTERFACES:
+        raise InputError(f"interface: {interface!r} must be one of {', '.join(INTERFACES)}")
 
 
 class _PocketOpens(ConvergenceError):
@@ -432,7 +515,8 @@ def _state(cn, x, delta, K, r, t, it, seconds, slope=None) -> SnapState:
         V, p, r_seal = d.cavity.measure(x)
         pocket = dict(V=V, p=p, r_seal=r_seal, E_gas=d.cavity.energy(x),
                       sealed=d.cavity.sealed)
-    return SnapState(float(delta), rim_load(d, r), strain_energy(d, x), cn.iface.energy(x),
+    return SnapState(float(delta), rim_load(d, r), strain_energy(d, x),
+                     cn.iface.energy(x, cn.anchors),
                      runs, radii, apex, it,
                      (float(t[1]), rim_load(d, K @ t[0])) if slope is None else slope,
                      seconds, x.copy(), **pocket)
@@ -466,16 +550,18 @@ def loading_cap(t: float, h: float) -> Cap:
 
 
 def trace_shell(t: float, h: float, mesh: str, delta_max: float, uniform: float = None,
-                settings: SnapSettings = SnapSettings(), progress=None):
+                settings: SnapSettings = SnapSettings(), progress=None,
+                interface: str = "frictionless"):
     """(discretisation, SnapPath) of the shell t / R, h / R on the named mesh, evenly
     meshed out to `uniform` of arc / R (default `ring_arc(delta_max)`), loaded to
-    delta_max / R (`trace_loading`).  A shell or delta_max outside the supported domain
-    raises InputError (a ValueError)."""
+    delta_max / R (`trace_loading`, with `interface`).  A shell, delta_max or interface
+    outside the supported domain raises InputError (a ValueError)."""
+    _check_interface(interface)
     cap = loading_cap(t, h)
     check_delta_max(delta_max, h, t_over_R=t)
     uniform = ring_arc(delta_max) if uniform is None else uniform
     d = discretise(cap_mesh(cap, mesh_spec(mesh, uniform)))
-    return d, trace_loading(d, delta_max, settings, progress)
+    return d, trace_loading(d, delta_max, settings, progress, interface=interface)
 
 
 def log_slope(path: SnapPath, lo: float, hi: float) -> tuple:

@@ -12,8 +12,11 @@ GAMMA_HAT (default 0.005, the base shell's 30 J/m^2), this prints P* four ways:
 - `loading area`: G with pi a^2 of the loading state, P = P_rel (the energy method's
   until the fourth wave; no energy functional produces it);
 - `covered, no edge force`: G with the covered areas at the same delta, P = P_rel;
-- `first order` (the energy method's): the same G, P = dPi/ddelta = P_rel - gamma dA/ddelta
-  (the edge force to first order in gamma on the paths relaxed without it);
+- `first order`: the same G, P = dPi/ddelta = P_rel - gamma dA/ddelta (the edge force to
+  first order in gamma on the paths relaxed without it);
+- `second order` (the energy method's): also the state's response to the edge force,
+  Pi = U_E - gamma A - gamma^2 c / 2 with the covered area's compliance c = dA/dgamma
+  each path records (solver.edge), and A + gamma c the area covered;
 - `edge force on one node`: every path relaxed with the edge force 2 pi gamma r on the
   edge node (solver.edge), P its rim force: exact for that model, whose line force is
   log-singular, so it depends on the mesh (on the fine mesh it inverts the edge element).
@@ -62,22 +65,23 @@ def relaxations(d, loading, gamma_hat, gamma_edge=0.0, width=0.0, family=None):
 
 
 def pull_offs(t_over_R=0.15, mesh="default", gamma_hat=0.005, one_node=True, widths=(),
-              family=None):
-    """{variant: PullOff (dimensionless)} of the shell t/R, h = R, frictionless, and
+              family=None, h_over_R=1.0):
+    """{variant: PullOff (dimensionless)} of the shell t/R, h/R (default 1), frictionless, and
     {"dofs", "paths", "seconds", "slide"}: the held edge's slide / R over each path of the
     paths relaxed without the edge force (its end minus its start).  `widths` (arc / R):
     also the edge force spread over each width ("spread over W"; needs `family` "corner")."""
-    cap = Cap(float(t_over_R), 1.0)
+    cap = Cap(float(t_over_R), float(h_over_R))
     a_need = a_star_estimate(cap, gamma_hat)
     d = discretise(cap_mesh(cap, mesh_spec(mesh, even_arc(cap, a_need))))
     loading = load(d, "frictionless", 0.3, a_stop=1.6 * a_need, stop_at_limit=True)
     paths, seconds = relaxations(d, loading, gamma_hat, family=family)
-    covered = energy.energy_surface([r.energy_path() for r in paths])
+    covered = energy.energy_surface([r.energy_path()[:8] for r in paths])
     loaded = energy.energy_surface([r.energy_path()[:5] for r in paths])
     fields = {f: getattr(covered, f) for f in covered.__dataclass_fields__}
     out = {"loading area": loaded,
            "covered, no edge force": _NoEdgeForce(**fields),
-           "first order": covered}
+           "first order": covered,
+           "second order": energy.energy_surface([r.energy_path() for r in paths])}
     out = {k: energy.pull_off(energy.equilibrium(s, gamma_hat)) for k, s in out.items()}
     info = {"dofs": d.ndof, "paths": len(paths), "seconds": {"gamma-free paths": seconds},
             "slide": np.array([r.a_edge[-1] - r.a_edge[0] for r in paths])}

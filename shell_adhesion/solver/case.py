@@ -138,10 +138,13 @@ class Relaxation:
     da_ddelta: np.ndarray = None  # its slope d a_edge / d delta along the path
     gamma_edge: float = 0.0       # gamma / (C10 R) of the edge force it was relaxed with
     #                               (solver.edge; its U is then U_E - gamma_edge pi a_edge^2)
+    dA_dgamma: np.ndarray = None  # d(covered area / R^2) / d(gamma / (C10 R)) at fixed
+    #                               delta along the path (solver.edge; 0 where the edge
+    #                               cannot slide): the energy method's second order
 
     def __post_init__(self):
         for name, fill in (("V", np.nan), ("p", np.nan), ("a_edge", self.a),
-                           ("da_ddelta", 0.0)):
+                           ("da_ddelta", 0.0), ("dA_dgamma", 0.0)):
             if getattr(self, name) is None:
                 object.__setattr__(self, name, np.full(len(self.delta), fill))
 
@@ -181,16 +184,16 @@ class Relaxation:
                    relaxation_views(d, path) if d is not None else (),
                    float(inversion), q.J_min, q.J_max, q.detF_min, path.timer.as_dict(),
                    path.array("V"), path.array("p"), float(reach), path.array("a"),
-                   path.array("da_ddelta"), float(gamma_edge))
+                   path.array("da_ddelta"), float(gamma_edge), path.array("dA_dgamma"))
 
     def energy_path(self) -> tuple:
-        """(a, delta, P, U, dP/ddelta, a_edge, da_edge/ddelta, gamma_edge) as
+        """(a, delta, P, U, dP/ddelta, a_edge, da_edge/ddelta, gamma_edge, dA/dgamma) as
         energy_surface takes it."""
         return (self.a, self.delta, self.P, self.U, self.dP_ddelta, self.a_edge,
-                self.da_ddelta, self.gamma_edge)
+                self.da_ddelta, self.gamma_edge, self.dA_dgamma)
 
 
-_PER_STATE = ("delta", "P", "U", "dP_ddelta", "V", "p", "a_edge", "da_ddelta")
+_PER_STATE = ("delta", "P", "U", "dP_ddelta", "V", "p", "a_edge", "da_ddelta", "dA_dgamma")
 
 
 def loading_views(d: Discretisation, loading: LoadingPath) -> tuple:

@@ -11,6 +11,12 @@ then pi <r^2>, the mean of r^2 over the outer surface's last `width` of referenc
 inside the edge (uniform weight, integrated with the Q2 shape functions: the consistent
 nodal loads of an even line load), so node i carries 2 pi gamma w_i r_i with sum w_i = 1
 (the width of a cohesive zone regularises the same line force).
+
+To second order in gamma (`area_compliance`): at a fixed held set and delta, the state
+of gamma moves from the gamma-free one by gamma K^-1 g (K the tangent of the free dofs, g
+= dA/dx = 2 pi w_i r_i on the carriers' radial dofs), so with c = g . K^-1 g the covered
+area is A + gamma c and the total potential U_E - gamma A - gamma^2 c / 2 (the energy
+method's second order: shell_adhesion.energy).
 Dimensionless: gamma / (C10 R), r / R, arc / R, energies / (C10 R^3).
 """
 from dataclasses import dataclass, replace
@@ -44,12 +50,16 @@ class EdgeAdhesion:
         r = self.r0 + np.asarray(x)[self.dofs]
         return float(self.weights @ (r * np.asarray(dx)[self.dofs]) / self.radius(x))
 
+    def gradient(self, x) -> np.ndarray:
+        """d(covered area pi <r^2>)/dx on `dofs`: 2 pi w_i r_i (units of R)."""
+        return 2 * math.pi * self.weights * (self.r0 + np.asarray(x)[self.dofs])
+
     def energy(self, x) -> float:
         return -self.gamma * math.pi * self.radius(x) ** 2
 
     def add_residual(self, x, r):
         r = np.array(r, dtype=float)
-        r[self.dofs] -= 2 * math.pi * self.gamma * self.weights * (self.r0 + np.asarray(x)[self.dofs])
+        r[self.dofs] -= self.gamma * self.gradient(x)
         return r
 
     def add_tangent(self, K):
@@ -92,12 +102,10 @@ def outer_arc(capmesh) -> np.ndarray:
     return np.arctan2(r, 1.0 - z)
 
 
-def with_edge(d, held, gamma: float, width: float = 0.0):
-    """The discretisation `d` with the edge force of the held set `held` (outer node
-    indices) for gamma / (C10 R) > 0, spread over `width` of arc / R inside the edge (0:
-    on the edge node); `d` itself for gamma = 0."""
-    if not gamma > 0:
-        return d
+def carriers(d, held, gamma: float = 1.0, width: float = 0.0) -> EdgeAdhesion:
+    """The edge adhesion of the held set `held` (outer node indices) on the discretisation
+    `d`, gamma / (C10 R), spread over `width` of arc / R inside the edge (0: on the edge
+    node)."""
     if not (math.isfinite(width) and width >= 0):
         raise ValueError(f"edge width: {width!r} must be a finite number >= 0 (arc / R)")
     cm = d.capmesh
@@ -106,8 +114,16 @@ def with_edge(d, held, gamma: float, width: float = 0.0):
         raise ValueError("edge width: a spread edge force needs a held set ending on an "
                          "element corner")
     w = spread_weights(outer_arc(cm), edge, width)
-    carriers = np.flatnonzero(w != 0)     # a corner of a partly loaded element: < 0
-    nodes = cm.outer[carriers]
-    return replace(d, edge=EdgeAdhesion(np.array([int(d.ur(n)) for n in nodes]),
-                                        cm.nodes[0, nodes].astype(float), w[carriers],
-                                        float(gamma)))
+    on = np.flatnonzero(w != 0)     # a corner of a partly loaded element: < 0
+    nodes = cm.outer[on]
+    return EdgeAdhesion(np.array([int(d.ur(n)) for n in nodes]),
+                        cm.nodes[0, nodes].astype(float), w[on], float(gamma))
+
+
+def with_edge(d, held, gamma: float, width: float = 0.0):
+    """The discretisation `d` with the edge force of the held set `held` (outer node
+    indices) for gamma / (C10 R) > 0, spread over `width` of arc / R inside the edge (0:
+    on the edge node); `d` itself for gamma = 0."""
+    if not gamma > 0:
+        return d
+    return replace(d, edge=carriers(d, held, gamma, width))

@@ -16,7 +16,7 @@ import numpy as np
 
 from .contact import (Constraints, constraints, contact_reactions, deformed_radius, gaps,
                       rim_load)
-from .edge import with_edge
+from .edge import EdgeAdhesion, carriers, with_edge
 from .forms import (Discretisation, Linearisation, deformation, potential_energy, tangent,
                     tangent_pattern)
 from .geometry import shown
@@ -105,6 +105,8 @@ class State:
     #                           held set (rim dofs -1), where dP_ddelta was computed
     da_ddelta: float = np.nan  # d a / d delta of a relaxation state at its held set (0 where
     #                           the held nodes cannot slide; frictionless: the edge slides)
+    dA_dgamma: float = 0.0    # a frictionless relaxation state: d(covered area / R^2) /
+    #                           d(gamma / (C10 R)) at fixed delta and held set (solver.edge)
 
 
 @dataclass(frozen=True, eq=False)
@@ -298,34 +300,49 @@ class _Problem:
                                + ", ".join(f"{h:.3g}" for h in history[-3:]) + ")")
 
     def tangent_direction(self, K, c, lu=None):
-        """dx/ddelta (full vector) and dP/ddelta at the state of K.
-
-        `lu` may be the factorisation of an earlier Newton iterate (same constraints, or
-        bordered to them): iterative refinement with K then makes dx as accurate as K's own
-        factorisation would (each step multiplies the error by about the relative change of
-        the tangent since); if REFINE_MAX steps do not, K is factorised.
-        """
-        fresh = lu is None
-        if fresh:
-            lu, _ = self.factor(K, c)
+        """dx/ddelta (full vector) and dP/ddelta at the state of K (`lu`: solve_free)."""
         e = np.zeros(self.d.ndof)
         e[c.rimz] = 1.0
         dr_dd = -(K @ e)[c.free]
         dx = np.zeros(self.d.ndof)
-        dx[c.free] = self.solve(lu, -dr_dd)
-        if not (fresh or self._refined(K, c, lu, dr_dd, dx)):
-            return self.tangent_direction(K, c)
+        dx[c.free] = self.solve_free(K, c, -dr_dd, lu)
         dx[c.rimz] = -1.0
         dP = -float(np.sum(K[c.rimz] @ dx))
         return dx, dP
 
-    def _refined(self, K, c, lu, dr_dd, dx) -> bool:
-        """Iterative refinement of dx[c.free] (K_ff dx = -dr_dd) in place; False if
-        REFINE_MAX steps do not bring the last correction below REFINE_TOL."""
+    def area_compliance(self, K, c, edge: EdgeAdhesion, x) -> float:
+        """c = g . K_ff^-1 g at the state x of K: the covered area's growth per unit gamma
+        at fixed delta and held set (solver.edge; g = edge.gradient on the free dofs),
+        solved with the newest factorisation of c (solve_free)."""
+        g = np.zeros(self.d.ndof)
+        g[edge.dofs] = edge.gradient(x)
+        rhs = g[c.free]
+        return float(rhs @ self.solve_free(K, c, rhs, self.newest_of(c)[0]))
+
+    def solve_free(self, K, c, rhs, lu=None):
+        """K_ff^-1 rhs on the free dofs of c.
+
+        `lu` may be the factorisation of an earlier Newton iterate (same constraints, or
+        bordered to them): iterative refinement with K then makes the solution as accurate
+        as K's own factorisation would (each step multiplies the error by about the
+        relative change of the tangent since); if REFINE_MAX steps do not, K is factorised.
+        """
+        if lu is not None:
+            y = self.solve(lu, rhs)
+            if self._refined(K, c, lu, rhs, y):
+                return y
+        lu, _ = self.factor(K, c)
+        return self.solve(lu, rhs)
+
+    def _refined(self, K, c, lu, rhs, y) -> bool:
+        """Iterative refinement of y (K_ff y = rhs) in place; False if REFINE_MAX steps do
+        not bring the last correction below REFINE_TOL."""
+        z = np.zeros(self.d.ndof)
         for _ in range(REFINE_MAX):
-            step = self.solve(lu, -dr_dd - (K @ dx)[c.free])
-            dx[c.free] += step
-            if np.abs(step).max() <= REFINE_TOL * np.abs(dx).max():
+            z[c.free] = y
+            step = self.solve(lu, rhs - (K @ z)[c.free])
+            y += step
+            if np.abs(step).max() <= REFINE_TOL * np.abs(y).max():
                 return True
         return False
 
@@ -585,12 +602,17 @@ def relax(d: Discretisation, interface: str, start: State, stop, step: float,
         start = replace(pb.state(x, delta, r, held, start.joined, hist, dP,
                                  centre_off=centre_pulled(d, r, held), check_J=False),
                         dx_ddelta=dx, dP_ddelta_left=dP)
+    else:
+        K = None
     if settings.start_tangent and start.dx_ddelta is not None:
         dx, dP = start.dx_ddelta, start.dP_ddelta     # the loading's, with these held nodes
     else:
-        dx, dP = pb.tangent_direction(pb.assemble(x)[0], c)
+        K = pb.assemble(x)[0]
+        dx, dP = pb.tangent_direction(K, c)
     edge = _edge_radius(d, held)
-    states = [replace(_with_stiffness(start, dP, dx), **edge(x, dx))]
+    compliance = _area_compliance(pb, c, held)
+    states = [replace(_with_stiffness(start, dP, dx), **edge(x, dx),
+                      **compliance(lambda: pb.assemble(x)[0] if K is None else K, x))]
     outside = np.setdiff1d(np.arange(len(d.capmesh.outer)), held)
     h = step
     penetration = centre_lifts = False
@@ -626,7 +648,7 @@ def relax(d: Discretisation, interface: str, start: State, stop, step: float,
         try:
             s = pb.state(x, delta, r, held, -1, hist, dP, centre_off=pulled, check_J=False,
                          U=Un)
-            s = replace(s, **edge(x, dx))
+            s = replace(s, **edge(x, dx), **compliance(lambda: K, x))
         except QualityError as err:
             ended_by = str(err)
             break
@@ -679,6 +701,16 @@ def _hermite(a, b, t):
     s = (t - t0) / L
     return ((2 * s**3 - 3 * s**2 + 1) * x0 + (s**3 - 2 * s**2 + s) * L * m0
             + (-2 * s**3 + 3 * s**2) * x1 + (s**3 - s**2) * L * m1)
+
+
+def _area_compliance(pb: _Problem, c: Constraints, held):
+    """(tangent, x) -> {"dA_dgamma": the covered area's compliance} of a frictionless held
+    set (_Problem.area_compliance: the carriers of the path's edge force, or its edge
+    node; `tangent()` gives K at x), {} where the held nodes cannot slide."""
+    if pb.interface != "frictionless" or not len(held):
+        return lambda tangent, x: {}
+    edge = pb.d.edge if pb.d.edge is not None else carriers(pb.d, held)
+    return lambda tangent, x: {"dA_dgamma": pb.area_compliance(tangent(), c, edge, x)}
 
 
 def _edge_radius(d: Discretisation, held):

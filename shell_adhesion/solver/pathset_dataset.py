@@ -19,7 +19,7 @@ from .case import PathSet, Relaxation
 from .cavity import Cavity
 from .postprocess import Profile, StressMap
 
-LAYOUT = 4          # version of this layout (part of the catalogue key of a path set)
+LAYOUT = 5          # version of this layout (part of the catalogue key of a path set)
 
 
 # descriptions of known fields; a field the solver adds later is stored all the same
@@ -36,6 +36,8 @@ _LONG_NAMES = {
     "relaxation_a": "held contact radius a / R of the path",
     "relaxation_a_edge": "deformed radius / R of the held edge (covered radius) along the path",
     "relaxation_da_ddelta": "its slope d a_edge / d delta along the path",
+    "relaxation_dA_dgamma": "covered area's compliance d(A / R^2) / d(gamma / (C10 R)) at "
+                            "fixed delta along the path (0: the edge cannot slide)",
     "relaxation_delta": "rim displacement delta / R",
     "relaxation_P": "rim force P / (C10 R^2)",
     "relaxation_U": "strain energy U / (C10 R^3)",

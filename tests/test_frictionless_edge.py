@@ -236,3 +236,18 @@ def test_the_edge_force_spread_to_zero_width_meets_jkr_on_the_solid_hemisphere()
     assert np.abs(np.polyval([slope, zero], widths) - P).max() <= 2e-4 * abs(zero)
     assert abs(zero / jkr_P_star_N(20.0, 30.0) - 1) <= 0.005, zero
     assert slope > 0            # spreading inward weakens the edge force's pull
+
+
+def test_a_pull_off_whose_edge_force_moves_the_area_too_far_is_refused(base_shell,
+                                                                     monkeypatch):
+    """PullOff.edge_growth is the covered area's growth under the edge force at a* (4.3 %
+    on the coarse base shell at gamma / (C10 R) = 0.005); beyond EDGE_GROWTH_MAX the
+    answer is refused, naming the growth."""
+    import shell_adhesion.solver.case as case
+    from shell_adhesion.energy import OutOfRange
+    ps, d, loading = base_shell
+    _, po = ps.pull_off(GAMMA_HAT)
+    assert 0.03 < po.edge_growth < 0.06
+    monkeypatch.setattr(case, "EDGE_GROWTH_MAX", 0.02)
+    with pytest.raises(OutOfRange, match=r"grows the covered area at a\* by 4\.\d+ %"):
+        ps.pull_off(GAMMA_HAT)

@@ -69,7 +69,8 @@ def _values(result):
                          stable_fixed_grips=empty.astype(bool))
         else:
             eq, po = answered[g]
-            values = dict(dimensional(po, g), status="ok", reason=po.note)
+            values = dict(dimensional(po, g), status="ok", reason=po.note,
+                          edge_growth=po.edge_growth)
             curve = dict(a=L(eq.a), delta=L(eq.delta), P=F(eq.P),
                          stable_fixed_load=np.asarray(eq.stable_fixed_load, dtype=bool),
                          stable_fixed_grips=np.asarray(eq.stable_fixed_grips, dtype=bool))
@@ -187,6 +188,9 @@ def _pull_off_dict(g, v) -> dict:
             if f"{k}_{extra}" in v:
                 x = v[f"{k}_{extra}"]
                 where[f"{name}_{extra}"] = x if extra == "rule" else _num(x)
+    # frictionless: how far the adhesive edge force grows the covered area at a*
+    # (PullOff.edge_growth; the energy method takes the force to second order)
+    out["fixed_load"]["edge_growth"] = _num(v.get("edge_growth", np.nan))
     out["jkr_P_star_N"] = _num(v["jkr_P_star"])
     return out
 

@@ -567,6 +567,7 @@ def _relaxation_curves(served, index, shells, C10s, R) -> dict:
     dP = _padded(shells, {j: [r.dP_ddelta for r in v] for j, v in rel.items()}, width)
     edge = _padded(shells, {j: [r.a_edge for r in v] for j, v in rel.items()}, width)
     slope = _padded(shells, {j: [r.da_ddelta for r in v] for j, v in rel.items()}, width)
+    comply = _padded(shells, {j: [r.dA_dgamma for r in v] for j, v in rel.items()}, width)
     a = _padded(shells, {j: [r.a for r in v] for j, v in rel.items()}, ())
     used = _padded(shells, {j: [float(r.usable) for r in v]
                             for j, v in rel.items()}, ())
@@ -591,6 +592,10 @@ def _relaxation_curves(served, index, shells, C10s, R) -> dict:
                   "frictionless edges slide, no_slip ones stay at relaxation_a_mm)")),
         "relaxation_dedge_ddelta": (K, slope, _attrs(
             "1", "slope d(relaxation_edge_mm)/d(relaxation_delta_mm) along the relaxation")),
+        "relaxation_dA_dgamma": (("C10", *K), comply[None] * R / c, _attrs(
+            "mm^3/N", "compliance dA/dgamma of the area the held set covers, at fixed delta, "
+                      "gamma in N/mm (x 1e-3: mm^2 per J/m^2): the adhesive edge force's "
+                      "second order (0 where the edge cannot slide)")),
     }
 
 

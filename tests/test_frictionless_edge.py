@@ -112,7 +112,7 @@ def test_a_relaxation_with_the_edge_force_balances_its_energy(base_shell):
 def test_second_order_edge_force_meets_the_relaxed_one():
     """The energy method's edge force (second order, on paths relaxed without it) against
     the force carried by the relaxations on the edge node: the same P* within 0.1 % at
-    gamma / (C10 R) = 1e-4 and at 0.005 (measured 0.024 %: the third order), where the
+    gamma / (C10 R) = 1e-4 and at 0.005 (measured 0.038 %: the third order), where the
     first order alone is 0.5-2 % short (measured 1.3 %)."""
     bench = _benchmark()
     small, _ = bench.pull_offs(0.15, "coarse", 1e-4)
@@ -240,8 +240,8 @@ def test_the_edge_force_spread_to_zero_width_meets_jkr_on_the_solid_hemisphere()
 
 def test_a_pull_off_whose_edge_force_moves_the_area_too_far_is_refused(base_shell,
                                                                      monkeypatch):
-    """PullOff.edge_growth is the covered area's growth under the edge force at a* (4.3 %
-    on the coarse base shell at gamma / (C10 R) = 0.005); beyond EDGE_GROWTH_MAX the
+    """PullOff.edge_growth is the covered area's growth under the edge force at a* (about
+    5 % on the coarse base shell at gamma / (C10 R) = 0.005); beyond EDGE_GROWTH_MAX the
     answer is refused, naming the growth."""
     import shell_adhesion.solver.case as case
     from shell_adhesion.energy import OutOfRange
@@ -249,5 +249,7 @@ def test_a_pull_off_whose_edge_force_moves_the_area_too_far_is_refused(base_shel
     _, po = ps.pull_off(GAMMA_HAT)
     assert 0.03 < po.edge_growth < 0.06
     monkeypatch.setattr(case, "EDGE_GROWTH_MAX", 0.02)
-    with pytest.raises(OutOfRange, match=r"grows the covered area at a\* by 4\.\d+ %"):
+    shown = f"{100 * po.edge_growth:.3g} %"
+    with pytest.raises(OutOfRange, match=rf"grows the covered area at a\* by {shown}, more "
+                                         rf"than 2 %"):
         ps.pull_off(GAMMA_HAT)

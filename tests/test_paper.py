@@ -60,10 +60,10 @@ README_TABLE = {
                 "delta_at_1.598": "-0.678", "P_at_1.598": "-1.637", "delta_star": "-0.611",
                 "a_star": "1.96", "P_dagger": "-1.569", "a_dagger": "1.47", "a0": "4.91"},
     # frictionless: no path that reaches delta = 0 holds a = 10 mm (the widest 9.35 mm)
-    "frictionless": {"P5": "13.00", "a5": "9.93", "P_star": "-2.037",
-                     "delta_dagger": "-0.778", "delta_at_2.13": "-0.734", "P_at_2.13": "-2.031",
-                     "delta_at_1.598": "-0.774", "P_at_1.598": "-1.809", "delta_star": "-0.709",
-                     "a_star": "2.24", "P_dagger": "-1.890", "a_dagger": "1.72", "a0": "5.93"},
+    "frictionless": {"P5": "13.00", "a5": "9.93", "P_star": "-2.045",
+                     "delta_dagger": "-0.781", "delta_at_2.13": "-0.739", "P_at_2.13": "-2.038",
+                     "delta_at_1.598": "-0.776", "P_at_1.598": "-1.810", "delta_star": "-0.712",
+                     "a_star": "2.25", "P_dagger": "-1.897", "a_dagger": "1.73", "a0": "6.04"},
 }
 
 

@@ -4,7 +4,7 @@ adhesive: points are pulled in before they touch and stick where they touch.)
 
     python benchmarks/no_slip_history.py [--shell base] [--tabor 3] [--mesh coarse]
         [--zone-elements 8] [--betas 1] [--approaches adhesive,free]
-        [--delta-max-mm D]
+        [--delta-max-mm D] [--even-to F]
 
 For each beta (the mixed-mode law's, `none`: the normal-only law) the no_slip pull-off
 P* of `solve_cohesive_case` (no error bars) with today's adhesive approach, then with
@@ -14,7 +14,11 @@ they touch; switched on at the turn at fixed delta, where the contact jumps in; 
 retraction as usual).  Both turn where their contact radius reaches TURN times the
 estimate of a* (the adhesive approach does so in tension, at delta < 0, which the
 adhesion-free one cannot), or both at --delta-max-mm D.  Prints P*, the turn (for the
-adhesion-free path, before and after the switch), wall time, dofs and states.  The energy method's P* of the base shell
+adhesion-free path, before and after the switch), wall time, dofs and states.
+`--even-to F` (scratch): the evenly meshed arc, refined to the zone, is fitted to F times
+the estimate of a* instead of once (the switch's jump-in carries the contact edge to about
+2.4 times a*, beyond the refined arc: there the zone spans about two outer edges and the
+retraction stalls, lambda 2).  The energy method's P* of the base shell
 (no_slip, default mesh): -1.7146 N (benchmarks/two_methods.py).  Lambda above the
 shipped domain is run by lifting its bound (scratch).
 """
@@ -45,11 +49,15 @@ def main(argv):
     betas, argv = _option(argv, "--betas", "1")
     approaches, argv = _option(argv, "--approaches", "adhesive,free")
     delta_mm, argv = _option(argv, "--delta-max-mm", None)
+    even_to, argv = _option(argv, "--even-to", None)
     if argv:
         sys.exit(f"no_slip_history: unknown arguments {argv}")
     tabor = float(tabor)
     cc.TABOR_RANGE = (cc.TABOR_RANGE[0], max(cc.TABOR_RANGE[1], tabor))      # scratch
     delta_mm = None if delta_mm is None else float(delta_mm)
+    if even_to is not None:                                                   # scratch
+        f, even_arc = float(even_to), cc.even_arc
+        cc.even_arc = lambda cap, a_need, base=None: even_arc(cap, f * a_need, base)
     for b in betas.split(","):
         beta = None if b == "none" else float(b)
         for approach in approaches.split(","):

@@ -36,7 +36,7 @@ import numpy as np
 
 from shell_adhesion.errors import ConvergenceError
 
-from .cohesive import Interface, anchors_at
+from .cohesive import Interface, anchors_at, scaled
 from .contact import INTERFACES, Constraints, constraints, gaps, rim_load
 from .forms import Linearisation, strain_energy, tangent
 from .linear import Timer
@@ -244,15 +244,27 @@ class _Continuation:
 # it held (the base shell, lambda 1, coarse, pressed to 2 mm: 6.5e-3 of its largest
 # U + Pi lost before the turn); 1e-3, 1e-2, 1e-1 give the same P* to 1e-4
 RELEASE = 0.01
+# the adhesion-free approach (`trace(adhesion_free_approach=True)`): its law's sigma0 and
+# gamma as a fraction of the law's (the same delta_c and penalty: the same contact), and
+# the first step of the ramp that switches the law on at the turn (halved on failure down
+# to SWITCH_STEP_MIN, where a snap is passed by descent: `_descend`)
+SWITCH_OFF = 1e-8
+SWITCH_STEP = 0.125
+SWITCH_STEP_MIN = 1e-3
 
 
 def trace(iface: Interface, delta_max: float, delta0: float = None,
           settings: ArcSettings = ArcSettings(), progress=None, a_turn: float = None,
-          interface: str = "frictionless") -> ArcPath:
+          interface: str = "frictionless", adhesion_free_approach: bool = False) -> ArcPath:
     """The equilibrium path from the shell lifted to delta0 / R (default: twice the law's
     reach above the plane) to delta_max / R (or, sooner, to a contact radius of a_turn / R)
     and back until the shell leaves the cohesive range (or settings.max_steps states);
-    `interface` the tangential contact (INTERFACES)."""
+    `interface` the tangential contact (INTERFACES).  `adhesion_free_approach` (a scratch
+    option, for the contact history of the energy method's loading): approach with the law
+    switched off (`cohesive.scaled` by SWITCH_OFF: contact alone; no_slip nodes held where
+    they touch), switch it on at the turn at fixed delta (`_switch_on`; the path's state
+    at the turn is the switched-on one, the approach's Pi that of the switched-off law),
+    then retract as usual."""
     if not (math.isfinite(delta_max) and delta_max > 0):
         raise ValueError(f"delta_max: {delta_max!r} must be a finite number > 0 (units of R)")
     if interface not in INTERFACES:
@@ -262,6 +274,8 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
                          f"{iface.beta:g}): it is for no_slip only")
     s, law, d = settings, iface.law, iface.d
     cn = _Continuation(iface, interface, s)
+    if adhesion_free_approach:
+        cn.iface = iface.with_law(scaled(law, SWITCH_OFF))
     delta0 = -2.0 * law.reach if delta0 is None else delta0
     free_slip = constraints(d, "frictionless", [])
     c, stuck = free_slip, np.zeros(0, dtype=int)
@@ -315,8 +329,19 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
         # (a_turn only where the approach advances: behind the jump-in, delta falls)
         if turn < 0 and (delta >= delta_max
                          or a_turn is not None and states[-1].a >= a_turn and t[1] > 0):
+            if adhesion_free_approach:
+                try:
+                    x, K, r, c, stuck, n = _switch_on(cn, iface, c, x, delta, stuck, interface)
+                except ConvergenceError as err:
+                    ended_by = f"the law did not switch on at delta = {delta:.6g} R ({err})"
+                    break
+                t = cn.tangent_at(K, c, (np.zeros(d.ndof), -1.0))
+                states.append(_state(cn, x, delta, K, r, t, n))
+                if progress is not None:
+                    progress(states[-1])
+            else:
+                t = (-t[0], -t[1])
             turn = len(states) - 1
-            t = (-t[0], -t[1])
             least = states[-1].P
         elif turn >= 0 and gaps(d, x, cn.candidates).min() > law.reach:
             ended_by = "left the cohesive range"
@@ -341,8 +366,8 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
                 c = held_radially(d, free_slip, stuck)
             if cn.anchors is not None:
                 before = states[-1].Pi
-                cn.anchors = anchors_at(iface, x, cn.anchors, stuck)
-                jump = iface.energy(x, cn.anchors) - before
+                cn.anchors = anchors_at(cn.iface, x, cn.anchors, stuck)
+                jump = cn.iface.energy(x, cn.anchors) - before
                 if jump != 0.0:         # the tangent moved with the anchors
                     states[-1] = replace(states[-1], anchor_jump=jump)
                     K = cn.linearise(x)[0]
@@ -354,6 +379,122 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
                     ended_by = f"no tangent after the stuck nodes changed ({err})"
                     break
     return ArcPath(tuple(states), turn, ended_by, cn.timer)
+
+
+def _switch_on(cn, iface, c, x, delta, stuck, interface):
+    """Switch cn's interface law on to iface's at fixed delta / R, from the converged
+    state x of the switched-off law: sigma0 and gamma ramped from 0 to the law's (steps of
+    SWITCH_STEP, halved on failure; below SWITCH_STEP_MIN the step is taken by descent,
+    `_descend`: a jump-in), each step re-solved with no_slip's held nodes updated as
+    `trace` does (a node that touches is held where it is) until they hold; the anchors of
+    the mixed-mode law start at every outer node's radius at the switch (no history of
+    adhesion).  Returns (x, K, r, constraints, stuck, Newton and chord iterations);
+    ConvergenceError if a descent fails."""
+    d, law = cn.d, iface.law
+    fixed = (np.zeros(d.ndof), 1.0)                 # the hyperplane delta = const
+    free_slip = constraints(d, "frictionless", [])
+    if cn.anchors is not None:
+        cn.anchors = iface.radii(x)
+    f, df, its = SWITCH_OFF, SWITCH_STEP, 0
+    while f < 1.0:
+        g_f = min(1.0, f + df)
+        cn.iface = iface.with_law(scaled(law, g_f)) if g_f < 1.0 else iface
+        try:
+            x_new, stuck_new, c_new, K, r, n = _held_solve(cn, c, x, delta, stuck, interface,
+                                                           free_slip, fixed,
+                                                           descend=df < SWITCH_STEP_MIN)
+        except ConvergenceError:
+            if df < SWITCH_STEP_MIN:
+                raise
+            df *= 0.5
+            continue
+        x, stuck, c, f, its = x_new, stuck_new, c_new, g_f, its + n
+        if df < SWITCH_STEP_MIN:
+            df = SWITCH_STEP
+        if cn.anchors is not None:
+            cn.anchors = anchors_at(cn.iface, x, cn.anchors, stuck)
+    return x, K, r, c, stuck, its
+
+
+def _held_solve(cn, c, x, delta, stuck, interface, free_slip, fixed, max_updates=50,
+                descend=False):
+    """Equilibrium at fixed delta, the no_slip held nodes updated (`trace`'s rule) and
+    re-solved until they hold: (x, stuck, c, K, r, iterations); `descend`: where Newton
+    fails, `_descend` first."""
+    law, its = cn.iface.law, 0
+    for _ in range(max_updates):
+        try:
+            x, _, K, r, (full, chord) = cn.correct(c, x, delta, fixed, 0.0)
+        except ConvergenceError:
+            if not descend:
+                raise
+            x, full = _descend(cn, c, x)
+            x, _, K, r, (n, chord) = cn.correct(c, x, delta, fixed, 0.0)
+            full += n
+        its += full + chord
+        if interface != "no_slip":
+            return x, stuck, c, K, r, its
+        g = gaps(cn.d, x, cn.candidates)
+        held = (g < 0.0) | (np.isin(cn.candidates, stuck) & (g <= RELEASE * law.delta_c))
+        if np.array_equal(cn.candidates[held], stuck):
+            return x, stuck, c, K, r, its
+        stuck = cn.candidates[held]
+        c = held_radially(cn.d, free_slip, stuck)
+    raise ConvergenceError(f"the held nodes still changed after {max_updates} solves")
+
+
+def _descend(cn, c, x, max_iter=600, mu0=1e-2):
+    """Pseudo-transient continuation at fixed delta, held nodes and anchors: steps
+    (K + mu D) dx = -r on the free dofs, D the mean of |diag K| added to the displacement
+    dofs' diagonal only (an overdamped flow of the displacements, the incompressibility
+    kept at each step), mu scaled with the residual (switched evolution relaxation: mu
+    falls as the flow settles) and raised tenfold where a step fails; returns (x,
+    iterations) once a plain Newton corrector (`correct`) converges from a step taken
+    with mu <= 1e-6 (or from every tenth step).  Passes a snap (a jump-in at fixed delta) that the corrector alone
+    cannot, to the equilibrium the damped flow settles in.  ConvergenceError after
+    max_iter steps."""
+    d = cn.d
+    fixed = (np.zeros(d.ndof), 1.0)
+    delta = -x[c.rimz].mean()
+    K, r = cn.linearise(x)
+    u = c.free[c.free < 2 * d.n2]                       # the free displacement dofs
+    lo, hi = K.indptr[u], K.indptr[u + 1]
+    slot = np.array([a + np.searchsorted(K.indices[a:b], i) for i, a, b in zip(u, lo, hi)])
+    mu, res_before = mu0, None
+    for it in range(max_iter):
+        if it:
+            K, r = cn.linearise(x)
+        res = float(np.linalg.norm(r[c.free]))
+        if res_before is not None:
+            mu = float(np.clip(mu * res / res_before, 1e-9, 1e6))
+        res_before = res
+        D = np.abs(K.data[slot]).mean()
+        for _ in range(20):
+            Km = K.copy()
+            Km.data[slot] += mu * D
+            try:
+                lu, _ = cn.factor(Km, c)
+                dx = cn.solve(lu, -r[c.free])
+            except ConvergenceError:
+                mu *= 10.0
+                continue
+            y = x.copy()
+            y[c.free] += dx
+            with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+                ok = np.all(np.isfinite(cn.residual(y)[1]))
+            if ok:
+                break
+            mu *= 10.0
+        else:
+            raise ConvergenceError(f"descent: no finite step (mu = {mu:.3g})")
+        x = y
+        if mu <= 1e-6 or it % 10 == 9:
+            try:
+                cn.correct(c, x, delta, fixed, 0.0)
+                return x, it + 1
+            except ConvergenceError:
+                pass
+    raise ConvergenceError(f"descent: no equilibrium after {max_iter} steps")
 
 
 class Stall:

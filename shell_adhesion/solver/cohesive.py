@@ -51,7 +51,7 @@ give that for any eps).  Phi(l -> inf) - Phi(0, 0) = gamma on every path: the to
 does not depend on the mode mix; the peak tractions are sigma0 (normal) and beta sigma0
 (shear, at g = 0, beta s >> eps).
 """
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cached_property
 
 import numpy as np
@@ -184,6 +184,15 @@ class Interface:
         b = self.beta
         if b is not None and not (np.isfinite(b) and b >= 0):
             raise ValueError(f"cohesive interface: beta = {b!r} must be a finite number >= 0")
+
+    def with_law(self, law) -> "Interface":
+        """This interface with another law (same discretisation and beta), sharing the
+        cached geometry and tangent slots."""
+        new = replace(self, law=law)
+        for name in ("edges", "edge_outer", "_quadrature", "dofs", "slots"):
+            if name in self.__dict__:
+                new.__dict__[name] = self.__dict__[name]
+        return new
 
     @cached_property
     def edges(self) -> np.ndarray:
@@ -346,6 +355,13 @@ class Interface:
         k[3:, :3] = rz.transpose(1, 0, 2)
         k[3:, 3:] = np.einsum("eq,aq,bq->abe", c * dsig * r * dr, N, N)
         return f, k
+
+
+def scaled(law: CohesiveLaw, factor: float) -> CohesiveLaw:
+    """`law` with sigma0 and gamma times `factor` (> 0): the same range delta_c, smooth-step
+    and penalty stiffness (the same contact); a small factor is adhesion-free contact."""
+    return replace(law, sigma0=factor * law.sigma0, gamma=factor * law.gamma,
+                   stiffness=law.stiffness)
 
 
 def anchors_at(iface: Interface, x, anchors, held) -> np.ndarray:

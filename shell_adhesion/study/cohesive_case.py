@@ -299,9 +299,11 @@ def solve_cohesive_case(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2, *, sigma0_MPa=Non
 
 
 def solve_checked(inp: CohesiveInput, error_bars=True, progress=False,
-                  timeout_s=None) -> CohesiveCaseResult:
+                  timeout_s=None, adhesion_free_approach=False) -> CohesiveCaseResult:
     """`solve_cohesive_case` of an input already checked by `cohesive_input`; `timeout_s`:
-    a path still being traced after this many seconds raises TimeoutError."""
+    a path still being traced after this many seconds raises TimeoutError;
+    `adhesion_free_approach` (a scratch option, benchmarks/no_slip_history.py): approach
+    with the law switched off and switch it on at the turn (`arclength.trace`)."""
     c = inp.case
     cap = Cap(c.t_mm / c.R_mm, c.h_mm / c.R_mm)
     g = inp.gamma_hat
@@ -326,7 +328,8 @@ def solve_checked(inp: CohesiveInput, error_bars=True, progress=False,
              f"{fit['refine']:.2g}): {inp.zone_elements:g} elements across the cohesive zone "
              f"expected at the pull-off (a sphere's, Maugis: {zone * c.R_mm:.3g} mm)")
     deadline = None if timeout_s is None else time.monotonic() + timeout_s
-    solve = _solve(cap, inp.law, c.interface, c.mesh, fit, units, deadline, inp.beta)
+    solve = _solve(cap, inp.law, c.interface, c.mesh, fit, units, deadline, inp.beta,
+                   adhesion_free_approach)
     elements, first = inp.zone_elements, None
     retry = dict(fit, refine=zone_refinement(zone, c.mesh, RETRY_FACTOR * elements))
     if (solve.path_failed and RETRY_FACTOR * elements <= ZONE_ELEMENTS_RANGE[1]
@@ -336,11 +339,12 @@ def solve_checked(inp: CohesiveInput, error_bars=True, progress=False,
              f"{first.refused} after {len(first.path.states)} states ({first.wall_s:.0f} s): "
              f"traced again with {elements:g} (the {c.mesh} mesh x {fit['refine']:.2g} at "
              f"the contact)")
-        solve = _solve(cap, inp.law, c.interface, c.mesh, fit, units, deadline, inp.beta)
+        solve = _solve(cap, inp.law, c.interface, c.mesh, fit, units, deadline, inp.beta,
+                       adhesion_free_approach)
     # the next coarser mesh with the retried factor has the failed path's elements at
     # the contact: its path is not run
     coarser = (_solve(cap, inp.law, c.interface, coarser_mesh(c.mesh), fit, units, deadline,
-                      inp.beta)
+                      inp.beta, adhesion_free_approach)
                if error_bars and not solve.refused and first is None else None)
     if not solve.refused and solve.zone_edges < ZONE_EDGES_MIN:
         notes.append(f"the cohesive zone at the pull-off spans {solve.zone_edges:.2g} outer "
@@ -362,6 +366,8 @@ def solve_checked(inp: CohesiveInput, error_bars=True, progress=False,
                 apex_element_mm=fitted_spec(c.mesh, fit).h_apex * c.R_mm,
                 delta_max_mm=fit["delta_max"] * c.R_mm,
                 a_turn_mm=None if fit["a_turn"] is None else fit["a_turn"] * c.R_mm)
+    if adhesion_free_approach:
+        prov["approach"] = "adhesion-free (the law switched on at the turn)"
     if first is not None:
         prov["first_path"] = dict(zone_elements=inp.zone_elements, dofs=first.ndof,
                                   states=len(first.path.states), wall_s=first.wall_s,
@@ -372,7 +378,7 @@ def solve_checked(inp: CohesiveInput, error_bars=True, progress=False,
 
 
 def _solve(cap, law, interface, mesh, fit, units=None, deadline=None,
-           beta=None) -> CohesiveSolve:
+           beta=None, adhesion_free_approach=False) -> CohesiveSolve:
     """Trace the path with `interface` contact on `mesh` (fitted to the zone:
     `fitted_spec`) and read its pull-off; `units` (R_mm, C10_MPa): report progress in them;
     `deadline` (time.monotonic()): TimeoutError after it; `beta` the mixed-mode law's."""
@@ -384,7 +390,8 @@ def _solve(cap, law, interface, mesh, fit, units=None, deadline=None,
         report = _with_deadline(report, deadline, mesh)
     settings = REFINED_SETTINGS if fit.get("refine", 1.0) < 1.0 else ArcSettings()
     path = trace(iface, fit["delta_max"], settings=settings, progress=report,
-                 a_turn=fit["a_turn"], interface=interface)
+                 a_turn=fit["a_turn"], interface=interface,
+                 adhesion_free_approach=adhesion_free_approach)
     wall = time.perf_counter() - t0
     if path.turn < 0 or path.ended_by != "left the cohesive range":
         what = "did not turn round" if path.turn < 0 else "ended before leaving the cohesive range"

@@ -1,0 +1,100 @@
+"""Benchmark: does the no_slip contact's history move the cohesive pull-off?  (The energy
+method forms its contact on an adhesion-free loading; the cohesive path's approach is
+adhesive: points are pulled in before they touch and stick where they touch.)
+
+    python benchmarks/no_slip_history.py [--shell base] [--tabor 3] [--mesh coarse]
+        [--zone-elements 8] [--betas 1] [--approaches adhesive,free]
+        [--delta-max-mm D] [--even-to F]
+
+For each beta (the mixed-mode law's, `none`: the normal-only law) the no_slip pull-off
+P* of `solve_cohesive_case` (no error bars) with today's adhesive approach, then with
+the adhesion-free approach (`solve_checked(adhesion_free_approach=True)`: the law
+switched off, sigma0 and gamma times arclength.SWITCH_OFF, no_slip nodes held where
+they touch; switched on at the turn at fixed delta, where the contact jumps in; the
+retraction as usual).  Both turn where their contact radius reaches TURN times the
+estimate of a* (the adhesive approach does so in tension, at delta < 0, which the
+adhesion-free one cannot), or both at --delta-max-mm D.  Prints P*, the turn (for the
+adhesion-free path, before and after the switch), wall time, dofs and states.
+`--even-to F` (scratch): the evenly meshed arc, refined to the zone, is fitted to F times
+the estimate of a* instead of once (the switch's jump-in carries the contact edge to about
+2.4 times a*, beyond the refined arc: there the zone spans about two outer edges and the
+retraction stalls, lambda 2).  The energy method's P* of the base shell
+(no_slip, default mesh): -1.7146 N (benchmarks/two_methods.py).  Lambda above the
+shipped domain is run by lifting its bound (scratch).
+"""
+import sys
+import time
+
+import shell_adhesion.study.cohesive_case as cc
+from shell_adhesion.solver.scaling import force_N, length_mm
+
+SHELLS = {"base": dict(R_mm=20.0, t_mm=3.0, h_mm=20.0),
+          "cap": dict(R_mm=20.0, t_mm=20.0, h_mm=20.0)}
+MATERIAL = dict(C10_MPa=0.3, gamma_J_m2=30.0)
+ENERGY_P_N = {"base": -1.7146}       # the energy method's no_slip P*, default mesh
+
+
+def _option(argv, flag, default):
+    if flag not in argv:
+        return default, argv
+    k = argv.index(flag)
+    return argv[k + 1], argv[:k] + argv[k + 2:]
+
+
+def main(argv):
+    shell, argv = _option(argv, "--shell", "base")
+    tabor, argv = _option(argv, "--tabor", "3")
+    mesh, argv = _option(argv, "--mesh", "coarse")
+    elements, argv = _option(argv, "--zone-elements", "8")
+    betas, argv = _option(argv, "--betas", "1")
+    approaches, argv = _option(argv, "--approaches", "adhesive,free")
+    delta_mm, argv = _option(argv, "--delta-max-mm", None)
+    even_to, argv = _option(argv, "--even-to", None)
+    if argv:
+        sys.exit(f"no_slip_history: unknown arguments {argv}")
+    tabor = float(tabor)
+    cc.TABOR_RANGE = (cc.TABOR_RANGE[0], max(cc.TABOR_RANGE[1], tabor))      # scratch
+    delta_mm = None if delta_mm is None else float(delta_mm)
+    if even_to is not None:                                                   # scratch
+        f, even_arc = float(even_to), cc.even_arc
+        cc.even_arc = lambda cap, a_need, base=None: even_arc(cap, f * a_need, base)
+    for b in betas.split(","):
+        beta = None if b == "none" else float(b)
+        for approach in approaches.split(","):
+            _run(shell, tabor, mesh, float(elements), beta, approach, delta_mm)
+    print(f"energy method ({shell}, no_slip, default mesh): P* = "
+          f"{ENERGY_P_N.get(shell, float('nan')):.4f} N")
+
+
+def _run(shell, tabor, mesh, elements, beta, approach, delta_max_mm):
+    """One path (approach "adhesive" or "free"); prints its line."""
+    geo = SHELLS[shell]
+    inp = cc.cohesive_input(**geo, **MATERIAL, tabor=tabor, delta_max_mm=delta_max_mm,
+                            interface="no_slip", mesh=mesh, zone_elements=elements,
+                            beta=beta)
+    t0 = time.perf_counter()
+    r = cc.solve_checked(inp, error_bars=False,
+                         adhesion_free_approach=approach == "free")
+    wall = time.perf_counter() - t0
+    R, C10 = geo["R_mm"], MATERIAL["C10_MPa"]
+    path, prov = r.solve.path, r.provenance
+    label = (f"{shell}, lambda {tabor:g}, beta {'none' if beta is None else f'{beta:g}'}, "
+             f"{approach} approach")
+    if path.turn < 0:
+        print(f"{label}: no turn ({path.ended_by}); {wall:.0f} s", flush=True)
+        return
+    at = path.states[path.turn]
+    before = path.states[path.turn - 1]
+    turn = (f"turn at delta {length_mm(at.delta, R):.4f} mm, a {length_mm(at.a, R):.4f} mm, "
+            f"P {force_N(at.P, C10, R):.4f} N"
+            + (f" (before the switch: a {length_mm(before.a, R):.4f} mm, P "
+               f"{force_N(before.P, C10, R):.4f} N)" if approach == "free" else ""))
+    answer = ("refused (" + r.refused + ")" if r.refused
+              else f"P* = {r.to_dict()['pull_off']['P_star_N']:.4f} N, a* "
+                   f"{r.to_dict()['pull_off']['a_star_mm']:.4f} mm")
+    print(f"{label}: {answer}; {turn}; {prov['dofs']} dofs, {prov['states']} states, "
+          f"{wall:.0f} s; ended by: {path.ended_by}; notes: {list(r.notes)}", flush=True)
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])

@@ -23,8 +23,8 @@ ENERGY_BASE = (-2.0447, 0.00094)   # the energy method's frictionless P* (covere
 # docs/figures/cohesive_thickness.csv): the minimum moved to t/R = 0.075
 LONG_RANGE = {0.05: (-3.0260, 0.00039), 0.075: (-2.9287, 0.00035), 0.1: (-2.9893, 0.00044)}
 # t/R -> lambda 1's P* and the energy method's (docs: "Pull-off against thickness")
-THICKNESS = {0.075: ((-2.243, 0.03), (-2.154, 0.018)), 0.1: ((-1.850, 0.015), (-1.740, 0.014)),
-             0.15: ((-2.175, 0.0095), (-2.013, 0.036))}
+THICKNESS = {0.075: ((-2.243, 0.03), (-2.176, 0.0013)), 0.1: ((-1.850, 0.015), (-1.763, 0.0072)),
+             0.15: ((-2.175, 0.0095), (-2.045, 0.00094))}
 
 
 def _shell(t_over_R):

@@ -55,6 +55,7 @@ def test_no_slip_pull_off_depends_on_the_approach():
     assert np.isfinite(pull_off(free).a_star)
 
 
+@pytest.mark.slow
 def test_a_switch_in_one_step_by_descent_lands_near_the_ramp(monkeypatch):
     """The law switched on at once (`arclength._descend`, pseudo-transient) against the
     ramp: the same pull-off within 1 % (measured: -1.8839 against -1.8767 N)."""

@@ -83,6 +83,7 @@ def test_a_curve_ended_by_inverted_paths_says_so(thin):
     assert "invert" not in str(e.value)     # its inverted paths lie inside the curve
 
 
+@pytest.mark.slow      # the domain map (`long`) holds the same refusal on this point
 def test_the_flattened_hemisphere_is_refused_for_its_physics():
     """t/R = 0.02, h/R = 1 at gamma/(C10 R) = 0.015 (coarse mesh, as a user calls it): its
     equilibrium curve still falls where the hemisphere snaps flat.  The thin-shell depth

@@ -34,6 +34,7 @@ def path(interface, beta=None, free=False):
                  adhesion_free_approach=free)
 
 
+@pytest.mark.slow      # the no_slip test below runs the switch on both approaches too
 def test_frictionless_pull_off_does_not_depend_on_the_approach():
     adhesive, free = path("frictionless"), path("frictionless", free=True)
     assert free.ended_by == "left the cohesive range"

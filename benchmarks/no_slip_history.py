@@ -23,22 +23,16 @@ retraction stalls, lambda 2).  The energy method's P* of the base shell
 shipped domain is run by lifting its bound (scratch).
 """
 import sys
+from pathlib import Path
 import time
 
 import shell_adhesion.study.cohesive_case as cc
 from shell_adhesion.solver.scaling import force_N, length_mm
 
-SHELLS = {"base": dict(R_mm=20.0, t_mm=3.0, h_mm=20.0),
-          "cap": dict(R_mm=20.0, t_mm=20.0, h_mm=20.0)}
-MATERIAL = dict(C10_MPa=0.3, gamma_J_m2=30.0)
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from two_methods import MATERIAL, SHELLS, _option     # noqa: E402  (the same shells)
+
 ENERGY_P_N = {"base": -1.7146}       # the energy method's no_slip P*, default mesh
-
-
-def _option(argv, flag, default):
-    if flag not in argv:
-        return default, argv
-    k = argv.index(flag)
-    return argv[k + 1], argv[:k] + argv[k + 2:]
 
 
 def main(argv):

@@ -333,7 +333,7 @@ class PathSet:
                 end = None if eq is None else float(np.max(eq.a))
                 e.args = (f"{e}{self._why_the_curve_ends(end)}",)
             raise
-        if po.edge_growth > EDGE_GROWTH_MAX:
+        if not po.edge_growth <= EDGE_GROWTH_MAX:       # NaN too: a failed compliance
             raise OutOfRange(
                 f"gamma/(C10 R) = {gamma:g}: the adhesive edge force grows the covered area "
                 f"at a* by {100 * po.edge_growth:.3g} %, more than {100 * EDGE_GROWTH_MAX:g} %: "

@@ -8,8 +8,11 @@ Base shell R = h = 20 mm, t = 3 mm, C10 = 0.3 MPa, gamma = 30 J/m^2.  Prints, pe
 interface, the energy method's P* and, per lambda, the cohesive P*, delta*, a* with their
 error bars (next coarser mesh; none with --no-error-bars), the states, Newton iterations
 and wall time; --zone-elements: the elements across the cohesive zone (default 4).  The
-cohesive law is normal only: with no_slip the nodes below the plane keep their radius
-(solver.arclength), the zone beyond them slides.
+cohesive law is normal only and the contact forms under adhesion (`beta=0,
+history="adhesive"`, the no_slip choices before the fourth wave, whose numbers
+docs/adhesion-range.md states): with no_slip the nodes below the plane keep their radius
+(solver.arclength), the zone beyond them slides.  `--defaults`: the case's no_slip
+defaults instead (mixed-mode beta 1, the loading history).
 """
 import sys
 import time
@@ -32,7 +35,8 @@ def main(argv):
     only, argv = _option(argv, "--only")
     elements, argv = _option(argv, "--zone-elements")
     bars = "--no-error-bars" not in argv
-    argv = [a for a in argv if a != "--no-error-bars"]
+    own = {} if "--defaults" in argv else dict(beta=0.0, history="adhesive")
+    argv = [a for a in argv if a not in ("--no-error-bars", "--defaults")]
     mesh = argv[0] if argv else "default"
     lambdas = [float(v) for v in argv[1:]] or [1.0, 2.0]
     for interface in ("frictionless", "no_slip"):
@@ -48,7 +52,8 @@ def main(argv):
             t0 = time.perf_counter()
             r = solve_cohesive_case(**SHELL, tabor=lam, interface=interface, mesh=mesh,
                                     zone_elements=float(elements or ZONE_ELEMENTS),
-                                    error_bars=bars)
+                                    error_bars=bars,
+                                    **(own if interface == "no_slip" else {}))
             out, prov = r.to_dict(), r.provenance
             if r.refused:
                 print(f"  lambda {lam:g}: refused: {r.refused}", flush=True)

@@ -1,12 +1,15 @@
-"""Benchmark: the base shell's no_slip cohesive pull-off with the mixed-mode law (an
-option, `beta`) beside the normal-only law and the energy method's no_slip P*.
+"""Benchmark: the base shell's no_slip cohesive pull-off with the mixed-mode law (`beta`)
+beside the normal-only law and the energy method's no_slip P*.
 
     python benchmarks/cohesive_mixed.py [MESH] [LAMBDA] [BETA ...] [--error-bars]
+        [--history adhesive|loading]
 
-Base shell R = h = 20 mm, t = 3 mm, C10 = 0.3 MPa, gamma = 30 J/m^2, no_slip.  BETA
-"none" is the normal-only law (the default of `solve_cohesive_case`); a number the
-mixed-mode law with delta_c / delta_t = BETA (0: the normal-only law through the
-mixed-mode code).  Prints per law the wall time, dofs, states, Newton iterations, P* and
+Base shell R = h = 20 mm, t = 3 mm, C10 = 0.3 MPa, gamma = 30 J/m^2, no_slip, the
+contact formed under adhesion (`--history adhesive`, the default here: the measurements of
+docs/adhesion-range.md; `loading` is the case's default).  BETA "none" is the normal-only
+law's own code (solver.cohesive.Interface with beta None, traced as `solve_cohesive_case`
+traces beta 0); a number the mixed-mode law with delta_c / delta_t = BETA (0: the
+normal-only law through the mixed-mode code, the case's `beta=0`).  Prints per law the wall time, dofs, states, Newton iterations, P* and
 its distance from the energy method's no_slip P* (computed once, same mesh name), and for
 a mixed-mode path the largest slip and shear traction in the cohesive zone at P*.  The
 same path (mesh, approach, settings) for every beta, so the wall times compare the laws'
@@ -23,6 +26,7 @@ import numpy as np
 from shell_adhesion.solver.cohesive import Interface, mixed
 from shell_adhesion.solver.forms import tangent
 from shell_adhesion.study.case import solve_case
+import shell_adhesion.study.cohesive_case as cc
 from shell_adhesion.study.cohesive_case import solve_cohesive_case
 
 SHELL = dict(R_mm=20.0, t_mm=3.0, h_mm=20.0, C10_MPa=0.3, gamma_J_m2=30.0)
@@ -31,6 +35,10 @@ SHELL = dict(R_mm=20.0, t_mm=3.0, h_mm=20.0, C10_MPa=0.3, gamma_J_m2=30.0)
 def main(argv):
     bars = "--error-bars" in argv
     argv = [a for a in argv if a != "--error-bars"]
+    history = "adhesive"
+    if "--history" in argv:
+        k = argv.index("--history")
+        history, argv = argv[k + 1], argv[:k] + argv[k + 2:]
     mesh = argv[0] if argv else "coarse"
     lam = float(argv[1]) if len(argv) > 1 else 1.0
     betas = [None if b == "none" else float(b) for b in argv[2:]] or [None, 0.0, 1.0]
@@ -42,8 +50,7 @@ def main(argv):
           f"({time.perf_counter() - t0:.0f} s)", flush=True)
     for beta in betas:
         t0 = time.perf_counter()
-        res = solve_cohesive_case(**SHELL, tabor=lam, interface="no_slip", mesh=mesh,
-                                  beta=beta, error_bars=bars)
+        res = _solve(lam, mesh, beta, history, bars)
         wall = time.perf_counter() - t0
         out = res.to_dict()
         prov, law = out["provenance"], "normal-only" if beta is None else f"beta = {beta:g}"
@@ -127,6 +134,20 @@ def _discretisation(result):
                refine=zone_refinement(zone_estimate(result.input.gamma_hat, result.input.tabor),
                                       c.mesh, result.input.zone_elements))
     return discretise(cap_mesh(cap, fitted_spec(c.mesh, fit)))
+
+
+def _solve(lam, mesh, beta, history, bars):
+    """The case at `beta` (None: the Interface's normal-only code, swapped in for beta 0)."""
+    if beta is not None:
+        return solve_cohesive_case(**SHELL, tabor=lam, interface="no_slip", mesh=mesh,
+                                   beta=beta, history=history, error_bars=bars)
+    real = cc.Interface
+    cc.Interface = lambda d, law, beta=None: real(d, law, None)
+    try:
+        return solve_cohesive_case(**SHELL, tabor=lam, interface="no_slip", mesh=mesh,
+                                   beta=0.0, history=history, error_bars=bars)
+    finally:
+        cc.Interface = real
 
 
 if __name__ == "__main__":

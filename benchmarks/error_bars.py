@@ -1,6 +1,6 @@
 """Benchmark: are the error bars honest and useful on a shell?  (issue 39, item 4)
 
-Run: python benchmarks/error_bars.py R_MM T_MM H_MM C10_MPA GAMMA_J_M2 [ANSWER [MESH ...]]
+Run: python benchmarks/error_bars.py R_MM T_MM H_MM C10_MPA GAMMA_J_M2[,...] [ANSWER [MESH ...]]
      (default: the answer on the default mesh; meshes coarser coarse default fine, the
      last the reference)
      e.g. python benchmarks/error_bars.py 15 1.5 11.25 0.5 20      (the thin shell of issue 39)
@@ -29,24 +29,32 @@ from shell_adhesion.solver.scaling import force_N, gamma_hat
 def main(argv):
     own = "--family" in argv and argv[argv.index("--family") + 1] == "larger"
     argv = [a for i, a in enumerate(argv) if "--family" not in argv[max(0, i - 1):i + 1]]
-    R, t, h, C10, gamma = (float(v) for v in argv[:5])
+    R, t, h, C10 = (float(v) for v in argv[:4])
+    gammas = [float(v) for v in argv[4].split(",")]
     answer = argv[5] if len(argv) > 5 else "default"
     meshes = argv[6:] or ["coarser", "coarse", "default", "fine"]
-    g = gamma_hat(gamma, C10, R)
-    top = gamma_bucket(g)
+    ghats = [gamma_hat(g, C10, R) for g in gammas]
+    top = gamma_bucket(max(ghats))
     solved, family = {}, None
     for mesh in [answer] + [m for m in meshes if m != answer]:
         t0 = time.perf_counter()
         ps, d, _ = solve_request(t / R, h / R, Request.serving(top), top, "no_slip", mesh,
                                  family=None if own else family)
         family = family or ps.stats["relaxation_family"]
-        got = answers(ps, [g])[g]
-        P = np.nan if isinstance(got, Exception) else float(force_N(got[1].P_star, C10, R))
+        got = answers(ps, ghats)
+        P = [np.nan if isinstance(got[g], Exception) else float(force_N(got[g][1].P_star, C10, R))
+             for g in ghats]
         layers = len(thickness_layers(t / R, mesh_spec(mesh))) - 1 if t < R else 0
         solved[mesh] = (mesh, ps.stats["relaxation_family"], layers, int(d.ndof), P,
                         time.perf_counter() - t0)
         print("solved", *solved[mesh], flush=True)
-    rows = [solved[m] for m in meshes]
+    for k, (gamma, g) in enumerate(zip(gammas, ghats)):
+        rows = [solved[m][:4] + (solved[m][4][k],) + solved[m][5:] for m in meshes]
+        _table(rows, R, t, h, C10, gamma, g)
+
+
+def _table(rows, R, t, h, C10, gamma, g):
+    """One gamma's table: per mesh its P*, the tool's bar, the distance to the last mesh."""
     ref = rows[-1][4]
     last = [r[4] for r in rows[-3:]][::-1]
     p_last = float(observed_order(*last)) if len(rows) >= 3 else np.nan
@@ -60,15 +68,14 @@ def main(argv):
     for i, (mesh, fam, layers, dofs, P, wall) in enumerate(rows):
         bar, rule = np.nan, ""
         if i >= 2:
-            ok = refines_through_thickness(t / R, mesh)
-            args = (P, rows[i - 1][4], rows[i - 2][4], ok)
+            args = (P, rows[i - 1][4], rows[i - 2][4], refines_through_thickness(t / R, mesh))
             bar = float(error_bar(*args))
             p = float(observed_order(*args))
             rule = f"p {p:.2f}" if np.isfinite(p) else "order 1 x3"
         true = abs(P - ref) if i < len(rows) - 1 else np.nan
         print(f"{mesh:9s} {fam:>7s} {layers:6d} {dofs:6d} {P:10.5f} {bar:9.2g} {rule:>10s} "
               f"{true:9.2g} {bar / true if true else np.nan:6.2f} "
-              f"{bar / abs(P - extrapolated):8.2f} {wall:8.0f}")
+              f"{bar / abs(P - extrapolated):8.2f} {wall:8.0f}", flush=True)
 
 
 if __name__ == "__main__":

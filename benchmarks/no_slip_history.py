@@ -1,24 +1,25 @@
 """Benchmark: does the no_slip contact's history move the cohesive pull-off?  (The energy
-method forms its contact on an adhesion-free loading; the cohesive path's approach is
-adhesive: points are pulled in before they touch and stick where they touch.)
+method forms its contact on an adhesion-free loading, as the cohesive case's default
+`history="loading"`; with `history="adhesive"` points are pulled in before they touch
+and stick where they touch.)
 
     python benchmarks/no_slip_history.py [--shell base] [--tabor 3] [--mesh coarse]
         [--zone-elements 8] [--betas 1] [--approaches adhesive,free]
         [--delta-max-mm D] [--even-to F]
 
-For each beta (the mixed-mode law's, `none`: the normal-only law) the no_slip pull-off
-P* of `solve_cohesive_case` (no error bars) with today's adhesive approach, then with
-the adhesion-free approach (`solve_checked(adhesion_free_approach=True)`: the law
+For each beta (the mixed-mode law's, 0: the normal-only law) the no_slip pull-off
+P* of `solve_cohesive_case` (no error bars) with the adhesive approach (`history=
+"adhesive"`), then with the adhesion-free approach (`history="loading"`: the law
 switched off, sigma0 and gamma times arclength.SWITCH_OFF, no_slip nodes held where
 they touch; switched on at the turn at fixed delta, where the contact jumps in; the
 retraction as usual).  Both turn where their contact radius reaches TURN times the
 estimate of a* (the adhesive approach does so in tension, at delta < 0, which the
 adhesion-free one cannot), or both at --delta-max-mm D.  Prints P*, the turn (for the
 adhesion-free path, before and after the switch), wall time, dofs and states.
-`--even-to F` (scratch): the evenly meshed arc, refined to the zone, is fitted to F times
-the estimate of a* instead of once (the switch's jump-in carries the contact edge to about
-2.4 times a*, beyond the refined arc: there the zone spans about two outer edges and the
-retraction stalls, lambda 2).  The energy method's P* of the base shell
+`--even-to F` (scratch): with the loading history the evenly meshed arc, refined to the
+zone, is fitted to F times the estimate of a* instead of cohesive_case.SWITCH_REACH = 2.5
+(the switch's jump-in carries the contact edge to about 2.4 times a*; with the arc fitted
+to once a* the retraction stalls where the zone spans about two outer edges, lambda 2).  The energy method's P* of the base shell
 (no_slip, default mesh): -1.7146 N (benchmarks/two_methods.py).  Lambda above the
 shipped domain is run by lifting its bound (scratch).
 """
@@ -50,10 +51,9 @@ def main(argv):
     cc.TABOR_RANGE = (cc.TABOR_RANGE[0], max(cc.TABOR_RANGE[1], tabor))      # scratch
     delta_mm = None if delta_mm is None else float(delta_mm)
     if even_to is not None:                                                   # scratch
-        f, even_arc = float(even_to), cc.even_arc
-        cc.even_arc = lambda cap, a_need, base=None: even_arc(cap, f * a_need, base)
+        cc.SWITCH_REACH = float(even_to)
     for b in betas.split(","):
-        beta = None if b == "none" else float(b)
+        beta = float(b)
         for approach in approaches.split(","):
             _run(shell, tabor, mesh, float(elements), beta, approach, delta_mm)
     print(f"energy method ({shell}, no_slip, default mesh): P* = "
@@ -65,14 +65,13 @@ def _run(shell, tabor, mesh, elements, beta, approach, delta_max_mm):
     geo = SHELLS[shell]
     inp = cc.cohesive_input(**geo, **MATERIAL, tabor=tabor, delta_max_mm=delta_max_mm,
                             interface="no_slip", mesh=mesh, zone_elements=elements,
-                            beta=beta)
+                            beta=beta, history="loading" if approach == "free" else "adhesive")
     t0 = time.perf_counter()
-    r = cc.solve_checked(inp, error_bars=False,
-                         adhesion_free_approach=approach == "free")
+    r = cc.solve_checked(inp, error_bars=False)
     wall = time.perf_counter() - t0
     R, C10 = geo["R_mm"], MATERIAL["C10_MPa"]
     path, prov = r.solve.path, r.provenance
-    label = (f"{shell}, lambda {tabor:g}, beta {'none' if beta is None else f'{beta:g}'}, "
+    label = (f"{shell}, lambda {tabor:g}, beta {beta:g}, "
              f"{approach} approach")
     if path.turn < 0:
         print(f"{label}: no turn ({path.ended_by}); {wall:.0f} s", flush=True)

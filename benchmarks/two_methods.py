@@ -4,12 +4,13 @@ the zone at every lambda, extrapolated to zero range, against the energy method'
 the same interface.
 
     python benchmarks/two_methods.py [--shells base,cap] [--interfaces frictionless,no_slip]
-        [--lambdas 3,4,5] [--mesh coarse] [--zone-elements 8] [--beta 1] [--jsonl FILE]
+        [--lambdas 3,4,5] [--mesh coarse] [--zone-elements 8] [--beta 1] [--history loading]
+        [--jsonl FILE]
 
 Shells (R = 20 mm, C10 = 0.3 MPa, gamma = 30 J/m^2, gamma / (C10 R) = 0.005): `base`
 t = 3 mm, h = 20 mm; `cap` the solid cap t = h = R (JKR: -1.5 pi gamma R = -2.8274 N).
-no_slip runs the mixed-mode law `--beta B` (the option of `solve_cohesive_case`; `none`:
-the normal-only law).  Lambdas above the shipped domain (3) are run by lifting its bound
+no_slip runs the mixed-mode law `--beta B` (`solve_cohesive_case`'s; 0: the normal-only
+law) with the contact history `--history` (loading, the case's default, or adhesive).  Lambdas above the shipped domain (3) are run by lifting its bound
 here (a scratch run: the shipped commands refuse them).  No error bars on the cohesive
 runs (their coarse companions would have half the elements across the zone).
 
@@ -50,11 +51,12 @@ def main(argv):
     mesh, argv = _option(argv, "--mesh", "coarse")
     elements, argv = _option(argv, "--zone-elements", "8")
     beta, argv = _option(argv, "--beta", "1")
+    history, argv = _option(argv, "--history", "loading")
     jsonl, argv = _option(argv, "--jsonl", None)
     if argv:
         sys.exit(f"two_methods: unknown arguments {argv}")
     lambdas = [float(v) for v in lambdas.split(",")]
-    beta = None if beta == "none" else float(beta)
+    beta = float(beta)
     cc.TABOR_RANGE = (cc.TABOR_RANGE[0], max(cc.TABOR_RANGE[1], *lambdas))    # scratch
     md_P = [md.pull_off(lam).P for lam in lambdas]     # units of pi gamma R
     print("Maugis-Dugdale sphere, excess over JKR [%] (x lambda^2): "
@@ -69,7 +71,8 @@ def main(argv):
     rows = []
     for shell in shells.split(","):
         for interface in interfaces.split(","):
-            rows.append(_row(shell, interface, lambdas, mesh, float(elements), beta, jsonl))
+            rows.append(_row(shell, interface, lambdas, mesh, float(elements), beta, jsonl,
+                             history))
     print("\n| shell | interface | energy method P* [N] | "
           + " | ".join(f"cohesive lambda {lam:g}" for lam in lambdas)
           + " | zero range (two largest; least squares) | energy / zero range - 1 |")
@@ -78,7 +81,7 @@ def main(argv):
         print(r)
 
 
-def _row(shell, interface, lambdas, mesh, elements, beta, jsonl):
+def _row(shell, interface, lambdas, mesh, elements, beta, jsonl, history):
     geo = SHELLS[shell]
     t0 = time.perf_counter()
     e = solve_case(**geo, **MATERIAL, interface=interface, mesh="default", progress=False)
@@ -87,12 +90,13 @@ def _row(shell, interface, lambdas, mesh, elements, beta, jsonl):
     print(f"{shell}, {interface}: energy method (default mesh) P* = {E:.4f} +- {E_err:.2g} N "
           f"({time.perf_counter() - t0:.1f} s)", flush=True)
     b = beta if interface == "no_slip" else None
+    own = dict(beta=beta, history=history) if interface == "no_slip" else {}
     P = []
     for lam in lambdas:
         t0 = time.perf_counter()
         r = cc.solve_cohesive_case(**geo, **MATERIAL, tabor=lam, interface=interface,
-                                   mesh=mesh, zone_elements=elements, beta=b,
-                                   error_bars=False)
+                                   mesh=mesh, zone_elements=elements, error_bars=False,
+                                   **own)
         wall = time.perf_counter() - t0
         prov = r.provenance
         if r.refused:

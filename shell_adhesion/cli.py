@@ -50,7 +50,7 @@ CASE_FLAGS = dict(R_mm="--R", t_mm="--t", h_mm="--h", C10_MPa="--C10",
                   p_kPa="--p-kPa", p0_kPa="--p0-kPa", p_atm_kPa="--p-atm-kPa",
                   gas_exponent="--gas-exponent")
 COHESIVE_FLAGS = dict(CASE_FLAGS, sigma0_MPa="--sigma0", tabor="--tabor", adhesion="--adhesion",
-                      zone_elements="--zone-elements", beta="--beta")
+                      zone_elements="--zone-elements", beta="--beta", history="--history")
 CAVITY_FLAGS = (("p_kPa", "kPa"), ("p0_kPa", "kPa"), ("p_atm_kPa", "kPa"), ("gas_exponent", "1"))
 MATERIAL_FLAGS = (("C01", "C01_MPa", "MPa"), ("C20", "C20_MPa", "MPa"), ("C30", "C30_MPa", "MPa"),
                   ("Jm", "Jm", "1"), ("D1", "D1_per_MPa", "1/MPa"))
@@ -148,7 +148,8 @@ def _run_case(ns):
     if ns.adhesion == "dugdale":
         return _run_cohesive_case(ns)
     for flag, what in (("sigma0", "a cohesive strength"), ("tabor", "a cohesive strength"),
-                       ("zone_elements", "a cohesive zone"), ("beta", "a mixed-mode law")):
+                       ("zone_elements", "a cohesive zone"), ("beta", "a mixed-mode law"),
+                       ("history", "a cohesive contact history")):
         if getattr(ns, flag) is not None:
             raise InputError(f"--{flag.replace('_', '-')}: {getattr(ns, flag)} given with "
                              f"--adhesion energy: {what} needs --adhesion dugdale")
@@ -183,7 +184,8 @@ def _run_cohesive_case(ns):
         delta_max, ns.interface or "frictionless", ns.mesh, names=COHESIVE_FLAGS,
         zone_elements=(cohesive_case.ZONE_ELEMENTS if ns.zone_elements is None
                        else _number("--zone-elements", ns.zone_elements, "1")),
-        beta=None if ns.beta is None else _number("--beta", ns.beta, "1"), **solid)
+        beta=None if ns.beta is None else _number("--beta", ns.beta, "1"),
+        history=ns.history, **solid)
     result = cohesive_case.solve_checked(inp, error_bars=not ns.no_error_bars,
                                          progress=not ns.json)
     if ns.json:
@@ -202,7 +204,7 @@ def _print_cohesive(out):
           f"{law['sigma0_MPa']:.4g} MPa, range delta_c = {law['delta_c_mm']:.4g} mm, "
           f"lambda = {law['tabor']:.4g} (smooth step {law['smooth_step']})")
     if "mixed_mode" in law:
-        print(f"mixed-mode law (an option): {law['mixed_mode']}")
+        print(f"no_slip law: {law['mixed_mode']}; contact history {law['history']}")
     checks = out["checks"]
     print(f"path: {checks['states']} states, {checks['path_ended_by']}")
     if out["refused"]:
@@ -560,10 +562,17 @@ def _parser():
                            "refined at the contact where it has fewer; a path that does "
                            "not turn round is traced again with twice as many)")
     case.add_argument("--beta", default=None,
-                      help="with --adhesion dugdale --interface no_slip: a mixed-mode law "
-                           "(an option), beta = delta_c / delta_t >= 0 (1: shear as strong "
-                           "and long-ranged as opening); the slip since a point left contact "
-                           "costs gamma as opening does (default: the normal-only law)")
+                      help="with --adhesion dugdale --interface no_slip: the mixed-mode "
+                           "law's beta = delta_c / delta_t >= 0 (default 1: shear as strong "
+                           "and long-ranged as opening, the slip since a point left contact "
+                           "costs gamma as opening does; 0: the normal-only law, toughness "
+                           "gamma in mode I only)")
+    case.add_argument("--history", default=None,
+                      help="with --adhesion dugdale --interface no_slip: how the contact is "
+                           "formed: loading (default: pressed without adhesion, as the "
+                           "energy method's loading; the law switched on at the turn) or "
+                           "adhesive (the law acts on the approach too: points stick where "
+                           "adhesion pulls them in)")
     case.add_argument("--mesh", choices=MESHES, default="default", help="mesh density")
     case.add_argument("--cavity", default="open", metavar="MODE",
                       help="open (default), pressure (prescribed gauge --p-kPa) or sealed "

@@ -23,7 +23,7 @@ KEYS = ("name", "description", "R_mm", "base", "sweeps", "grid", "material", "in
         "delta_max_over_R", "error_bars", "task_timeout_s", "outputs", "cavity", "adhesion")
 CAVITY_KEYS = ("mode", "p_kPa", "p0_kPa", "p_atm_kPa", "gas_exponent")
 CAVITY_FACTORS = ("p_kPa",)     # cavity parameters that sweeps and grid may vary
-ADHESION_KEYS = ("model", "tabor", "zone_elements")
+ADHESION_KEYS = ("model", "tabor", "zone_elements", "beta", "history")
 ADHESION_MODELS = ("energy", "dugdale")
 ADHESION_FACTORS = ("tabor",)   # the cohesive law's parameter that sweeps and grid may vary
 OUTPUTS = ("equilibrium_curves", "loading_curves", "relaxation_curves", "deformed_states")

@@ -140,6 +140,20 @@ def test_the_api_names_beta(monkeypatch):
         cc.solve_cohesive_case(20, 3, 20, 0.3, 30, tabor=1.0, interface="no_slip", beta=-0.5)
     with pytest.raises(cc.InputError, match=r"^beta: 1 given with interface frictionless"):
         cc.solve_cohesive_case(20, 3, 20, 0.3, 30, tabor=1.0, beta=1)
-    inp = cc.cohesive_input(20, 3, 20, 0.3, 30, tabor=1.0, interface="no_slip", beta=1)
-    assert inp.beta == 1.0 and inp.as_dict()["beta"] == 1.0
+    inp = cc.cohesive_input(20, 3, 20, 0.3, 30, tabor=1.0, interface="no_slip", beta=0)
+    assert inp.beta == 0.0 and inp.as_dict()["beta"] == 0.0
     assert "beta" not in cc.cohesive_input(20, 3, 20, 0.3, 30, tabor=1.0).as_dict()
+
+
+def test_no_slip_defaults_to_the_mixed_mode_law_and_the_loading_history():
+    """One question, one answer: the cohesive no_slip case forms its contact as the energy
+    method's loading does and charges gamma for any mode mix (cohesive_case.NO_SLIP_DEFAULTS);
+    the normal-only law and the adhesive history are options."""
+    inp = cc.cohesive_input(20, 3, 20, 0.3, 30, tabor=1.0, interface="no_slip")
+    assert (inp.beta, inp.history) == (1.0, "loading")
+    assert inp.as_dict()["history"] == "loading"
+    other = cc.cohesive_input(20, 3, 20, 0.3, 30, tabor=1.0, interface="no_slip", beta=0,
+                              history="adhesive")
+    assert (other.beta, other.history) == (0.0, "adhesive")
+    frictionless = cc.cohesive_input(20, 3, 20, 0.3, 30, tabor=1.0)
+    assert frictionless.beta is None and frictionless.history == "adhesive"

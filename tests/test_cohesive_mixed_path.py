@@ -30,11 +30,11 @@ from shell_adhesion.study import cohesive_case as cc
 def base_shell_path(beta):
     """The base shell's no_slip path at lambda 1 (coarse), pressed to 1.3 a* (as the case
     command does), with the mixed-mode law of `beta` (None: the normal-only law)."""
-    inp = cc.cohesive_input(20, 3, 20, 0.3, 30, tabor=1.0, interface="no_slip", beta=beta)
+    inp = cc.cohesive_input(20, 3, 20, 0.3, 30, tabor=1.0, interface="no_slip")
     cap = Cap(0.15, 1.0)
     a_need = a_star_estimate(cap, inp.gamma_hat)
     d = discretise(cap_mesh(cap, mesh_spec("coarse", even_arc(cap, a_need))))
-    return trace(Interface(d, inp.law, inp.beta), 0.25, a_turn=TURN * a_need,
+    return trace(Interface(d, inp.law, beta), 0.25, a_turn=TURN * a_need,
                  interface="no_slip")
 
 

@@ -21,6 +21,8 @@ ENERGY_BASE = (-2.0447, 0.00094)   # the energy method's frictionless P* (covere
 #                                    force to second order)
 # t/R -> lambda 0.05's P* [N] (docs: "Pull-off against lambda", rows of
 # docs/figures/cohesive_thickness.csv): the minimum moved to t/R = 0.075
+# the no_slip law and history before the fourth wave (mode-I-only toughness, adhesive approach)
+NORMAL_ONLY = dict(beta=0.0, history="adhesive")
 LONG_RANGE = {0.05: (-3.0260, 0.00039), 0.075: (-2.9287, 0.00035), 0.1: (-2.9893, 0.00044)}
 # t/R -> lambda 1's P* and the energy method's (docs: "Pull-off against thickness")
 THICKNESS = {0.075: ((-2.243, 0.03), (-2.176, 0.0013)), 0.1: ((-1.850, 0.015), (-1.763, 0.0072)),
@@ -106,7 +108,7 @@ def test_lambda_3_with_eight_elements_across_the_zone():
     assert len(r.solve.path.states) <= 1630 // 2
     # no_slip (with four elements: no turn in 3000 states, then retried): -2.0684 N in 520
     ns = solve_cohesive_case(**_shell(0.15), tabor=3.0, zone_elements=8, interface="no_slip",
-                             error_bars=False)
+                             **NORMAL_ONLY, error_bars=False)
     assert not ns.refused, ns.refused
     P_ns = ns.to_dict()["pull_off"]["P_star_N"]
     _within("lambda 3, eight elements, no_slip", P_ns, (-2.0684, 0.001))
@@ -130,7 +132,7 @@ def test_lambda_3_no_slip_with_the_default_elements_is_answered_by_the_retry():
     # docs ("no_slip contact"): with four elements across the zone the path does not turn
     # in 3000 states; traced again with eight it gives the eight-element P* (-2.0684 N),
     # without error bars (the coarser mesh would have four)
-    r = solve_cohesive_case(**_shell(0.15), tabor=3.0, interface="no_slip")
+    r = solve_cohesive_case(**_shell(0.15), tabor=3.0, interface="no_slip", **NORMAL_ONLY)
     assert not r.refused, r.refused
     first = r.provenance["first_path"]
     assert first["zone_elements"] == 4 and first["refused"].startswith("did not turn round")
@@ -147,22 +149,53 @@ def test_at_lambda_0_05_the_minimum_moves_to_t_over_R_0_075():
     assert min(P, key=lambda t: abs(P[t])) == 0.075
 
 
-# lambda -> no_slip P* [N] and error bar (docs: "no_slip contact"); the energy method's
+# lambda -> no_slip P* [N] and error bar of the normal-only law with the adhesive history
+# (docs: "no_slip contact"); the energy method's
 NO_SLIP_BASE = {0.3: (-2.5281, 0.0014), 1.0: (-2.1747, 0.0083), 2.0: (-2.1034, 0.081)}
 ENERGY_NO_SLIP = (-1.7146, 0.0014)
 
 
 @pytest.mark.slow
-def test_no_slip_pull_off_is_the_frictionless_one_not_the_energy_methods():
+def test_mode_I_only_no_slip_pull_off_is_the_frictionless_one_not_the_energy_methods():
     e = solve_case(**_shell(0.15), interface="no_slip", progress=False, error_bars=False)
     energy = e.to_dict()["pull_off"][0]["fixed_load"]["P_N"]
     _within("energy method, no_slip", energy, ENERGY_NO_SLIP)
     for lam, stated in NO_SLIP_BASE.items():
         r = solve_cohesive_case(**_shell(0.15), tabor=lam, interface="no_slip",
-                                error_bars=False)
+                                **NORMAL_ONLY, error_bars=False)
         assert not r.refused, r.refused
         P = r.to_dict()["pull_off"]["P_star_N"]
         _within(f"lambda {lam}, no_slip", P, stated)
         # the frictionless value (docs: they differ by at most 0.2 %)
         assert abs(P / BASE[lam][0] - 1) <= 0.002
         assert P / energy > 1.2         # the docs: 22.7 % beyond at lambda 2, more below
+
+
+# lambda -> the default no_slip P* [N] (mixed-mode beta 1, the loading history), coarse
+# mesh fitted to eight elements across the zone (docs: "no_slip contact";
+# `python benchmarks/no_slip_history.py --tabor L --approaches free`)
+NO_SLIP_LOADING = {2.0: -1.7887, 3.0: -1.7656}
+
+
+@pytest.mark.slow
+def test_default_no_slip_pull_off_tends_to_the_energy_methods():
+    """Issue 39: the cohesive no_slip P* within 4 % of the energy method's at lambda 3 and
+    closer to it than to the frictionless one; zero range (P = P0 + k / lambda^2 through
+    lambda 2 and 3, the sphere's Maugis-Dugdale excess law) within 2 %.  What is left
+    (about 1.9 %): the switch's jump-in at the turn carries the contact edge to about 2.4
+    a* under the law, where the energy method's held set is the adhesion-free one."""
+    P = {}
+    for lam in NO_SLIP_LOADING:
+        r = solve_cohesive_case(**_shell(0.15), tabor=lam, interface="no_slip", mesh="coarse",
+                                zone_elements=8, error_bars=False)
+        assert not r.refused, r.refused
+        assert r.input.history == "loading" and r.input.beta == 1.0
+        P[lam] = r.to_dict()["pull_off"]["P_star_N"]
+        _within(f"lambda {lam}, no_slip (loading history)", P[lam], (NO_SLIP_LOADING[lam], 0))
+    energy, frictionless = ENERGY_NO_SLIP[0], ENERGY_BASE[0]
+    assert abs(P[3.0] / energy - 1) <= 0.04
+    assert abs(P[3.0] - energy) < abs(P[3.0] - frictionless)
+    zero = (9.0 * P[3.0] - 4.0 * P[2.0]) / 5.0
+    print(f"no_slip P*: lambda 2 {P[2.0]:.4f}, 3 {P[3.0]:.4f}, zero range {zero:.4f} N; "
+          f"energy method {energy:.4f} N ({zero / energy - 1:+.2%})")
+    assert abs(zero / energy - 1) <= 0.02

@@ -121,6 +121,14 @@ BAD = [
      "adhesion.zone_elements: 'x' must be a number"),
     ({"adhesion": {"model": "energy", "zone_elements": 8}},
      "adhesion.zone_elements: given with adhesion.model energy"),
+    ({"adhesion": {"model": "energy", "history": "loading"}},
+     "adhesion.history: given with adhesion.model energy"),
+    ({"adhesion": {"model": "dugdale", "tabor": 1, "beta": 1}},
+     "adhesion.beta: 1 given with interface frictionless: the mixed-mode law is for no_slip"),
+    ({"interface": "no_slip", "adhesion": {"model": "dugdale", "tabor": 1, "history": "x"}},
+     "adhesion.history: 'x' must be one of loading, adhesive"),
+    ({"interface": "no_slip", "adhesion": {"model": "dugdale", "tabor": 1, "beta": -1}},
+     "adhesion.beta: -1 must be >= 0"),
 ]
 
 

@@ -1,5 +1,7 @@
 """The adhesion-free approach of the cohesive path (`arclength.trace(
-adhesion_free_approach=True)`, a scratch option): the law switched off on the approach
+adhesion_free_approach=True)`; the cohesive case's no_slip default, `history="loading"`,
+with the evenly meshed arc fitted to cohesive_case.SWITCH_REACH times the estimate of a*):
+the law switched off on the approach
 (contact alone), switched on at the turn at fixed delta, then the usual retraction.
 
 Measured (base shell, lambda 1, coarse as below; `python benchmarks/no_slip_history.py

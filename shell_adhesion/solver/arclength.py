@@ -259,8 +259,9 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
     """The equilibrium path from the shell lifted to delta0 / R (default: twice the law's
     reach above the plane) to delta_max / R (or, sooner, to a contact radius of a_turn / R)
     and back until the shell leaves the cohesive range (or settings.max_steps states);
-    `interface` the tangential contact (INTERFACES).  `adhesion_free_approach` (a scratch
-    option, for the contact history of the energy method's loading): approach with the law
+    `interface` the tangential contact (INTERFACES).  `adhesion_free_approach` (the contact
+    history of the energy method's loading; study.cohesive_case's no_slip default
+    `history="loading"`): approach with the law
     switched off (`cohesive.scaled` by SWITCH_OFF: contact alone; no_slip nodes held where
     they touch), switch it on at the turn at fixed delta (`_switch_on`; the path's state
     at the turn is the switched-on one, the approach's Pi that of the switched-off law),

@@ -13,10 +13,14 @@ K^2))^(1/3), K = 4 E* / 3, E* = 8 C10 (the solid sphere's; for a shell it is a m
 the range against R).  The named mesh is refined at the contact where its apex elements
 are too large for the cohesive zone Maugis expects (`zone_refinement`, `fitted_spec`);
 a path that snaps from node to node without turning is traced again with twice the
-elements.  With no_slip, `beta` (an option) makes the law mixed-mode: the slip of a point
+elements.  With no_slip the law is mixed-mode (`beta`, default 1): the slip of a point
 from where it last touched opens the same potential as the gap (toughness gamma in any
-mode mix; beta = delta_c / delta_t, 0 the normal-only law; `solver.cohesive`).  Error bars from the next coarser mesh (`solver.error_bars`), refined by the
-same factor.
+mode mix; beta = delta_c / delta_t; 0 is the normal-only law, mode-I-only toughness;
+`solver.cohesive`), and the contact is formed as the energy method forms it (`history`
+"loading", the default: pressed with the law switched off, switched on at the turn;
+"adhesive": the law acts on the approach too, and points stick where adhesion pulls
+them in).  A frictionless path does not depend on its history.  Error bars from the
+next coarser mesh (`solver.error_bars`), refined by the same factor.
 
 Units: R, t, h, delta, a, c in mm; C10 and sigma0 in MPa; gamma in J/m^2; P in N (> 0
 compression; pull-off P < 0); delta > 0 approach.
@@ -69,7 +73,22 @@ RETRY_FACTOR = 2.0
 # coarsely near P*, its error bar 0.0016 -> 0.03 N)
 REFINED_SETTINGS = ArcSettings(easy=6)
 COHESIVE_NAMES = dict(sigma0_MPa="sigma0_MPa", tabor="tabor", adhesion="adhesion",
-                      zone_elements="zone_elements", beta="beta")
+                      zone_elements="zone_elements", beta="beta", history="history")
+# no_slip's contact history and law (one physical question, one answer: the energy
+# method's no_slip peels a bonded annulus formed by an adhesion-free loading and charges
+# gamma for opening and shear alike).  Base shell, lambda 3, P* [N] (docs/adhesion-range.md):
+# beta 1 with the loading history -1.7656 (energy method -1.7146); with the adhesive
+# history -2.0755; the normal-only law (beta 0), adhesive history -2.0684
+HISTORIES = ("loading", "adhesive")
+NO_SLIP_DEFAULTS = dict(beta=1.0, history="loading")
+# with the loading history the law is switched on at the turn, where the contact jumps in
+# to about 2.4 times the estimate of a* (base shell, lambda 2 and 3): the evenly meshed arc
+# (refined to the zone) reaches this many times that estimate, or the retraction stalls
+# where the zone spans about two outer edges
+SWITCH_REACH = 2.5
+HISTORY_WORDS = dict(loading="loading: pressed with the law switched off, switched on at the "
+                             "turn (the energy method's contact)",
+                     adhesive="adhesive: the law acts on the approach too")
 # the elements a user may ask for: fewer than one is no resolution; 32 bounds the cost
 # (the dofs at the contact grow with them: 8 at lambda 3 on the base shell, 21,066)
 ZONE_ELEMENTS_RANGE = (1.0, 32.0)
@@ -91,6 +110,7 @@ class CohesiveInput:
     tabor: float
     zone_elements: float = ZONE_ELEMENTS
     beta: float = None        # the mixed-mode law's delta_c / delta_t (None: normal-only)
+    history: str = "adhesive"     # how the contact is formed (HISTORIES)
 
     @property
     def gamma_hat(self) -> float:
@@ -105,21 +125,22 @@ class CohesiveInput:
     def as_dict(self) -> dict:
         out = dict(self.case.as_dict(), adhesion="dugdale", sigma0_MPa=self.sigma0_MPa,
                    tabor=self.tabor, zone_elements=self.zone_elements)
-        if self.beta is not None:
-            out["beta"] = self.beta
+        if self.case.interface == "no_slip":
+            out.update(beta=self.beta, history=self.history)
         return out
 
 
 def cohesive_input(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2, sigma0_MPa=None, tabor=None,
                    delta_max_mm=None, interface="frictionless", mesh="default",
-                   names=None, zone_elements=ZONE_ELEMENTS, beta=None,
+                   names=None, zone_elements=ZONE_ELEMENTS, beta=None, history=None,
                    **solid) -> CohesiveInput:
     """Check a cohesive case's input before any computation; InputError names the field
     as `names` calls it (API_NAMES and COHESIVE_NAMES by default).  `solid` holds the
     material and cavity arguments of `case_input`: only the open neo-Hookean shell is
     supported.  `interface` frictionless or no_slip, as the energy method's;
     `zone_elements` the elements across the cohesive zone (ZONE_ELEMENTS_RANGE); `beta`
-    (None, or a finite number >= 0 with no_slip) the mixed-mode law's."""
+    (a finite number >= 0) the mixed-mode law's and `history` (HISTORIES) how the contact
+    is formed, both no_slip only (None: NO_SLIP_DEFAULTS)."""
     n = {**API_NAMES, **COHESIVE_NAMES, **(names or {})}
     inp = case_input(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2, delta_max_mm, interface, mesh,
                      n, **solid)
@@ -160,21 +181,37 @@ def cohesive_input(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2, sigma0_MPa=None, tabor
     if not lo <= ze <= hi:
         raise InputError(f"{n['zone_elements']}: {ze:g} must be between {lo:g} and {hi:g} "
                          f"(elements across the cohesive zone)")
-    return CohesiveInput(inp, float(sigma0), float(lam), float(ze), _beta(beta, inp, n))
+    if inp.interface != "no_slip":
+        for name, value, why in (("beta", beta, "the mixed-mode law is for no_slip only"),
+                                 ("history", history, "a frictionless path does not depend "
+                                                      "on how its contact was formed")):
+            if value is not None:
+                shown = f"{value:g}" if isinstance(value, (int, float)) else value
+                raise InputError(f"{n[name]}: {shown} given with {n['interface']} "
+                                 f"{inp.interface}: {why}")
+        return CohesiveInput(inp, float(sigma0), float(lam), float(ze))
+    return CohesiveInput(inp, float(sigma0), float(lam), float(ze), _beta(beta, n),
+                         _history(history, n))
 
 
-def _beta(beta, inp: CaseInput, n: dict):
-    """The checked mixed-mode beta (None: the normal-only law)."""
+def _beta(beta, n: dict) -> float:
+    """The checked mixed-mode beta of a no_slip case (None: the default)."""
     if beta is None:
-        return None
+        return NO_SLIP_DEFAULTS["beta"]
     b = check_finite(beta, n["beta"], "1")
     if not b >= 0:
         raise InputError(f"{n['beta']}: {b:g} must be >= 0 (delta_c / delta_t of the "
                          f"mixed-mode law)")
-    if inp.interface != "no_slip":
-        raise InputError(f"{n['beta']}: {b:g} given with {n['interface']} {inp.interface}: "
-                         f"the mixed-mode law is for no_slip only")
     return float(b)
+
+
+def _history(history, n: dict) -> str:
+    """The checked contact history of a no_slip case (None: the default)."""
+    if history is None:
+        return NO_SLIP_DEFAULTS["history"]
+    if history not in HISTORIES:
+        raise InputError(f"{n['history']}: {history!r} must be one of {', '.join(HISTORIES)}")
+    return history
 
 
 @dataclass(frozen=True, eq=False)
@@ -243,9 +280,11 @@ class CohesiveCaseResult:
 
     def _law_dict(self):
         law, R = self.input.law, self.input.case.R_mm
-        mixed = {} if self.input.beta is None else dict(
-            mixed_mode=f"beta = {self.input.beta:g} (delta_c / delta_t), toughness gamma in "
-                       f"any mode mix")
+        b = self.input.beta
+        mixed = ({} if b is None else dict(mixed_mode=(
+            "beta = 0: normal-only, toughness gamma in mode I only" if b == 0 else
+            f"beta = {b:g} (delta_c / delta_t), toughness gamma in any mode mix"),
+            history=HISTORY_WORDS[self.input.history]))
         return dict(name="Dugdale", **mixed, sigma0_MPa=self.input.sigma0_MPa,
                     tabor=self.input.tabor,
                     gamma_J_m2=self.input.case.gamma_J_m2[0],
@@ -273,8 +312,8 @@ def _clean(v):
 
 def solve_cohesive_case(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2, *, sigma0_MPa=None, tabor=None,
                         delta_max_mm=None, interface="frictionless", mesh="default",
-                        zone_elements=ZONE_ELEMENTS, beta=None, error_bars=True,
-                        progress=False) -> CohesiveCaseResult:
+                        zone_elements=ZONE_ELEMENTS, beta=None, history=None,
+                        error_bars=True, progress=False) -> CohesiveCaseResult:
     """The Maugis-Dugdale pull-off of one open neo-Hookean shell on a rigid plane.
 
     Give the interface's strength as `sigma0_MPa` (> 0) or as the Tabor-Maugis parameter
@@ -285,31 +324,32 @@ def solve_cohesive_case(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2, *, sigma0_MPa=Non
     elements across the cohesive zone Maugis expects (1 to 32; where the named mesh has
     more it is kept); a path that does not turn round or does not leave the cohesive
     range is traced once more with RETRY_FACTOR times as many (the notes and
-    provenance["first_path"] say so).  `beta` (no_slip only; None: the normal-only law,
-    the default): the mixed-mode law with delta_c / delta_t = beta (>= 0; 0 is the
-    normal-only law through the mixed-mode code).  `error_bars`: the same path on the next coarser
+    provenance["first_path"] say so).  `beta` (no_slip only; default 1): the mixed-mode
+    law with delta_c / delta_t = beta (>= 0; 0 is the normal-only law, mode-I-only
+    toughness); `history` (no_slip only): "loading" (default: the contact formed without
+    adhesion, as the energy method's; the law switched on at the turn) or "adhesive" (the
+    law acts on the approach too).  `error_bars`: the same path on the next coarser
     mesh (not when the requested mesh's path is refused or was retried).  `progress`: a
     line per 50 states on stderr.  The input is checked before any computation
     (InputError names the field).
     """
     inp = cohesive_input(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2, sigma0_MPa, tabor,
                          delta_max_mm, interface, mesh, zone_elements=zone_elements,
-                         beta=beta)
+                         beta=beta, history=history)
     return solve_checked(inp, error_bars, progress)
 
 
 def solve_checked(inp: CohesiveInput, error_bars=True, progress=False,
-                  timeout_s=None, adhesion_free_approach=False) -> CohesiveCaseResult:
+                  timeout_s=None) -> CohesiveCaseResult:
     """`solve_cohesive_case` of an input already checked by `cohesive_input`; `timeout_s`:
-    a path still being traced after this many seconds raises TimeoutError;
-    `adhesion_free_approach` (a scratch option, benchmarks/no_slip_history.py): approach
-    with the law switched off and switch it on at the turn (`arclength.trace`)."""
+    a path still being traced after this many seconds raises TimeoutError."""
     c = inp.case
     cap = Cap(c.t_mm / c.R_mm, c.h_mm / c.R_mm)
     g = inp.gamma_hat
     a_need = a_star_estimate(cap, g)
     zone = zone_estimate(g, inp.tabor)
-    fit = dict(uniform=even_arc(cap, a_need),
+    adhesion_free_approach = inp.history == "loading"
+    fit = dict(uniform=even_arc(cap, (SWITCH_REACH if adhesion_free_approach else 1.0) * a_need),
                delta_max=(min(delta_bound(cap), APPROACH_MAX) if c.delta_max_mm is None
                           else c.delta_max_mm / c.R_mm),
                a_turn=None if c.delta_max_mm is not None else TURN * a_need,
@@ -366,8 +406,6 @@ def solve_checked(inp: CohesiveInput, error_bars=True, progress=False,
                 apex_element_mm=fitted_spec(c.mesh, fit).h_apex * c.R_mm,
                 delta_max_mm=fit["delta_max"] * c.R_mm,
                 a_turn_mm=None if fit["a_turn"] is None else fit["a_turn"] * c.R_mm)
-    if adhesion_free_approach:
-        prov["approach"] = "adhesion-free (the law switched on at the turn)"
     if first is not None:
         prov["first_path"] = dict(zone_elements=inp.zone_elements, dofs=first.ndof,
                                   states=len(first.path.states), wall_s=first.wall_s,

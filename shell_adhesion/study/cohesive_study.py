@@ -77,6 +77,7 @@ def point_key(inp: CohesiveInput, error_bars: bool) -> dict:
             "t_over_R": c.t_mm / c.R_mm, "h_over_R": c.h_mm / c.R_mm,
             "gamma_hat": inp.gamma_hat, "tabor": inp.tabor, "interface": c.interface,
             "mesh": c.mesh, "zone_elements": inp.zone_elements, "error_bars": bool(error_bars),
+            "beta": inp.beta, "history": inp.history,
             "delta_max": None if c.delta_max_mm is None else c.delta_max_mm / c.R_mm,
             # the catalogue's "at least" fields: a cohesive answer serves its own key only
             "delta_max_over_R": 0.0, "gamma_max_hat": 0.0}

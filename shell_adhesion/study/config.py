@@ -31,7 +31,9 @@
       model: dugdale            #   energy or dugdale (study.cohesive_study: one traced path
       tabor: 1                  #   per point); tabor the base lambda, may be swept;
                                 #   zone_elements: elements across the cohesive zone
-                                #   (1 to 32, default 4)
+                                #   (1 to 32, default 4); with no_slip: beta (mixed-mode
+                                #   law, default 1; 0 normal-only) and history (loading,
+                                #   the default, or adhesive: how the contact is formed)
     error_bars: true            # a second, coarser mesh for error bars (default true)
     task_timeout_s: 3600        # wall-time limit of one FE task, s (default 3600): a task
                                 #   past it is recorded as failed with its reason
@@ -493,8 +495,9 @@ def _adhesion(doc, sweeps, grid, material, cavity) -> dict:
     if model not in ADHESION_MODELS:
         raise StudyError(f"adhesion.model: {model!r} must be one of {', '.join(ADHESION_MODELS)}")
     if model == "energy":
-        if "tabor" in doc or "zone_elements" in doc or swept:
-            where = next((f"adhesion.{k}" for k in ("tabor", "zone_elements") if k in doc),
+        own = ("tabor", "zone_elements", "beta", "history")
+        if any(k in doc for k in own) or swept:
+            where = next((f"adhesion.{k}" for k in own if k in doc),
                          swept[0] if swept else None)
             raise StudyError(f"{where}: given with adhesion.model energy (the energy method has "
                              "zero range; use dugdale)")
@@ -516,6 +519,10 @@ def _adhesion(doc, sweeps, grid, material, cavity) -> dict:
     out = {"model": "dugdale", "tabor": _number(doc["tabor"], "adhesion.tabor")}
     if "zone_elements" in doc:      # its range: study.cohesive_case's rule, per point
         out["zone_elements"] = _number(doc["zone_elements"], "adhesion.zone_elements")
+    if "beta" in doc:               # its rules: study.cohesive_case's, per point
+        out["beta"] = _number(doc["beta"], "adhesion.beta")
+    if "history" in doc:
+        out["history"] = _string(doc["history"], "adhesion.history")
     return out
 
 
@@ -549,12 +556,15 @@ def cohesive_input_at(study: Study, point: dict):
     names = dict(R_mm="R_mm", t_mm=t_place, h_mm=h_place, C10_MPa=c_place,
                  gamma_J_m2=g_place, tabor=lam_place, delta_max_mm="delta_max_over_R",
                  interface="interface", mesh="mesh", adhesion="adhesion.model",
-                 zone_elements="adhesion.zone_elements")
+                 zone_elements="adhesion.zone_elements", beta="adhesion.beta",
+                 history="adhesion.history")
     delta_max = None if study.delta_max_over_R is None else study.delta_max_over_R * R
     try:
         return cohesive_input(R, t * R, h * R, C10, [gamma], tabor=lam, delta_max_mm=delta_max,
                               interface=study.interface, mesh=study.mesh, names=names,
-                              zone_elements=study.adhesion.get("zone_elements", ZONE_ELEMENTS))
+                              zone_elements=study.adhesion.get("zone_elements", ZONE_ELEMENTS),
+                              beta=study.adhesion.get("beta"),
+                              history=study.adhesion.get("history"))
     except InputError as e:         # the rule, named by the file's place
         raise StudyError(str(e)) from None
 

@@ -60,11 +60,13 @@ def test_a_thin_shell_agrees_with_the_fine_mesh(cells):
 
 def test_the_thinnest_shallowest_cap_agrees_with_the_fine_mesh(cells):
     """t/R = 0.02, h/R = 0.2 (delta* > 0 at every gamma), gamma/(C10 R) = 0.001, 0.005,
-    0.015 and 0.03: each default-mesh P* with its error bar holds the fine mesh's (13,225
-    dofs, about 7 minutes).  Its coarse meshes keep their layers through the thickness and
-    the default mesh's value crosses the coarse one's at 0.015, where the error bar of the
-    finer difference alone was 0.06 % and the fine mesh 0.31 % away.  Measured: 0.15,
-    0.45, 0.66 and 0.51 error bars (fine -0.6430, -3.0748, -7.8877, -13.634 N)."""
+    0.015 and 0.03: each default-mesh P* with its error bar holds the fine mesh's (24,837
+    dofs, about half an hour).  With 1, 1, 2, 4 layers the default mesh's value crossed the
+    coarse one's at 0.015, where the error bar of the finer difference alone was 0.06 % and
+    the fine mesh 0.31 % away.  Measured with 1, 2,
+    4, 8 layers (the bars from the default and coarse meshes, solver.error_bars.
+    coarsest_usable; `python benchmarks/error_bars.py 20 0.4 4 0.3 6,30,90,180`): 0.01,
+    0.41, 0.62 and 0.29 error bars (fine -0.64351, -3.0777, -7.8943, -13.640 N)."""
     _holds_the_fine_mesh(cells, 0.02, 0.2, (0.001, 0.005, 0.015, 0.03))
 
 

@@ -23,6 +23,15 @@ The value on a mesh and on the next coarser one (every size doubled) differ by a
   -0.065719, -0.065516, -0.065528, -0.065731 C10 R^2; with the finer difference alone the
   default mesh's error bar was 0.06 %, its distance to the fine mesh 0.31 %.)
 
+A mesh with a single element layer through a shell (t/R below about 0.041 on the coarser
+mesh) is outside the range where the error falls with the size: it does not enter a bar
+(`coarsest_usable`; the callers then give two meshes).  Measured on t/R 0.02, h/R 0.2
+(P* on 1, 2, 4, 8 layers; bar / distance of the default mesh to the fine one, with the
+coarser mesh -> without): gamma/(C10 R) 0.001 (its own mesh) 20 -> 1.8, 0.005 1.02 ->
+2.4, 0.015 5.0 -> 1.6, 0.03 3.4 -> 3.4; 0.001 on the mesh fitted to 0.03 28 -> 69 (there
+the default mesh lies 0.012 % from the fine one, 1/24 of its own step: no two-mesh rule
+sees that).
+
 The meshes must also relax the same kind of paths: contact fronts ending on element
 corners and on midside nodes (solver.case.relaxation_starts) converge to one value from
 different sides, so values of the two kinds measure no order (the thin shell R 15, t 1.5,
@@ -72,6 +81,21 @@ def refines_through_thickness(t_over_R: float, mesh: str, steps: int = 2) -> boo
     layers = [len(thickness_layers(t_over_R, mesh_spec(names[level - k]))) - 1
               for k in range(steps + 1)]
     return all(finer > coarser for finer, coarser in zip(layers, layers[1:]))
+
+
+def coarsest_usable(t_over_R: float, mesh: str) -> bool:
+    """Whether the mesh two levels coarser than `mesh` enters `mesh`'s error bar: not where
+    it has a single element layer through a shell (t/R below about 0.041: solver.mesh
+    THIN_LAYERS).  One layer is outside the range where the error falls with the element
+    size (t/R 0.02, h/R 0.2, gamma/(C10 R) 0.001, P* [N] on 1, 2, 4, 8 layers: -0.64813,
+    -0.64294, -0.64271, -0.64309: the one-layer step is 23 times the next and the default
+    mesh's distance to the fine one 1.7 times its own step; with it the bar was 20 times
+    that distance); such a bar uses two meshes."""
+    if t_over_R >= 1.0:
+        return True
+    names = {v: n for n, v in LEVELS.items()}
+    coarsest = names.get(LEVELS[mesh] - 2)
+    return coarsest is not None and len(thickness_layers(t_over_R, mesh_spec(coarsest))) - 1 >= 2
 
 
 def error_bar(value, coarser_value, coarsest_value=None, order_observable=True):

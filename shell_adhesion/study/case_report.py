@@ -10,8 +10,8 @@ import xarray as xr
 
 from shell_adhesion.cube import CURVES, PULL_OFF     # the cube's names, units and long names
 from shell_adhesion import theory
-from shell_adhesion.solver.error_bars import (curve_error, error_bar, observed_order,
-                                               refines_through_thickness, rule)
+from shell_adhesion.solver.error_bars import (coarsest_usable, curve_error, error_bar,
+                                               observed_order, refines_through_thickness, rule)
 from shell_adhesion.solver.scaling import energy_mJ, force_N, length_mm
 
 from .a0_note import a0_note
@@ -48,7 +48,9 @@ def _values(result):
     adhesion = []
     answered = {g: (eq, po) for g, eq, po in result.adhesion}
     coarser = dict(zip(answered, result.coarser_pull_off or ()))
-    coarsest = dict(zip(answered, result.coarsest_pull_off or ()))
+    coarsest = (dict(zip(answered, result.coarsest_pull_off or ()))
+                if coarsest_usable(result.input.t_mm / result.input.R_mm, result.input.mesh)
+                else {})
     refused = dict(result.refused)
     conv = dict(force=F, length=L)
     observable = order_observable(result)

@@ -57,8 +57,8 @@ from shell_adhesion.cube import (CURVE_COORDS, CURVES, DIMS, GAMMA_UNITS, PULL_O
                                  study_attrs)
 from shell_adhesion.solver import case, request
 from shell_adhesion.solver.cavity import P_ATM_KPA
-from shell_adhesion.solver.error_bars import (curve_error, error_bar, observed_order,
-                                               refines_through_thickness)
+from shell_adhesion.solver.error_bars import (coarsest_usable, curve_error, error_bar,
+                                               observed_order, refines_through_thickness)
 from shell_adhesion.solver.material import NEO_HOOKE
 from shell_adhesion.solver.mesh import mesh_spec
 from shell_adhesion.solver.scaling import energy_mJ, force_N, gamma_hat, length_mm
@@ -356,7 +356,8 @@ def _build(plan: Plan, served: dict, failed: dict, history: str, material) -> xr
                                               for level, sets in (("coarser", coarser),
                                                                   ("coarsest", coarsest)))
                     results[i][0].update(_errors(
-                        results[i][0], c2, c3, refines_through_thickness(t, study.mesh)))
+                        results[i][0], c2, c3 if coarsest_usable(t, study.mesh) else None,
+                        refines_through_thickness(t, study.mesh)))
                     notes[i] = "; ".join(w for w in (why2, why3) if w)
             except ValueError as e:     # shell_adhesion.energy.OutOfRange and gamma > gamma_max
                 status[i], reason[i] = "out of range", str(e)

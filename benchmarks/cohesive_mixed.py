@@ -6,16 +6,15 @@ beside the normal-only law and the energy method's no_slip P*.
 
 Base shell R = h = 20 mm, t = 3 mm, C10 = 0.3 MPa, gamma = 30 J/m^2, no_slip, the
 contact formed under adhesion (`--history adhesive`, the default here: the measurements of
-docs/adhesion-range.md; `loading` is the case's default).  BETA "none" is the normal-only
-law's own code (solver.cohesive.Interface with beta None, traced as `solve_cohesive_case`
-traces beta 0); a number the mixed-mode law with delta_c / delta_t = BETA (0: the
-normal-only law through the mixed-mode code, the case's `beta=0`).  Prints per law the wall time, dofs, states, Newton iterations, P* and
+docs/adhesion-range.md; `loading` is the case's default).  BETA the mixed-mode law's
+delta_c / delta_t (0: the normal-only law, whose path it traces to 1e-12,
+tests/test_cohesive_mixed_path.py).  Prints per law the wall time, dofs, states, Newton iterations, P* and
 its distance from the energy method's no_slip P* (computed once, same mesh name), and for
 a mixed-mode path the largest slip and shear traction in the cohesive zone at P*.  The
 same path (mesh, approach, settings) for every beta, so the wall times compare the laws'
-cost; then the cost of one linearisation (FE tangent plus interface) at the normal-only
+cost; then the cost of one linearisation (FE tangent plus interface) at the beta = 0
 path's pull-off state, each law on the same state (interleaved, best of several), which
-a loaded machine disturbs less.  Default: coarse, lambda 1, betas none 0 1; no error bars
+a loaded machine disturbs less.  Default: coarse, lambda 1, betas 0 1; no error bars
 unless --error-bars.
 """
 import sys
@@ -26,7 +25,6 @@ import numpy as np
 from shell_adhesion.solver.cohesive import Interface, mixed
 from shell_adhesion.solver.forms import tangent
 from shell_adhesion.study.case import solve_case
-import shell_adhesion.study.cohesive_case as cc
 from shell_adhesion.study.cohesive_case import solve_cohesive_case
 
 SHELL = dict(R_mm=20.0, t_mm=3.0, h_mm=20.0, C10_MPa=0.3, gamma_J_m2=30.0)
@@ -41,7 +39,7 @@ def main(argv):
         history, argv = argv[k + 1], argv[:k] + argv[k + 2:]
     mesh = argv[0] if argv else "coarse"
     lam = float(argv[1]) if len(argv) > 1 else 1.0
-    betas = [None if b == "none" else float(b) for b in argv[2:]] or [None, 0.0, 1.0]
+    betas = [float(b) for b in argv[2:]] or [0.0, 1.0]
     normal = None
     t0 = time.perf_counter()
     energy = solve_case(**SHELL, interface="no_slip", mesh=mesh, error_bars=False)
@@ -53,12 +51,12 @@ def main(argv):
         res = _solve(lam, mesh, beta, history, bars)
         wall = time.perf_counter() - t0
         out = res.to_dict()
-        prov, law = out["provenance"], "normal-only" if beta is None else f"beta = {beta:g}"
+        prov, law = out["provenance"], f"beta = {beta:g}"
         if res.refused:
             print(f"lambda {lam:g}, {law}: refused ({res.refused}); {wall:.1f} s", flush=True)
             continue
         po = out["pull_off"]
-        if beta is None:
+        if beta == 0.0:
             normal = res
         err = "" if po["P_star_N_error"] is None else f" +- {po['P_star_N_error']:.4f}"
         print(f"lambda {lam:g}, {law}: P* = {po['P_star_N']:.4f}{err} N "
@@ -66,7 +64,7 @@ def main(argv):
               f"a* = {po['a_star_mm']:.4f} mm; {prov['dofs']} dofs, {prov['states']} states, "
               f"{prov['newton_iterations']} Newton iterations, path {prov['wall_s']:.1f} s, "
               f"wall {wall:.1f} s", flush=True)
-        if beta is not None:
+        if beta > 0.0:
             zone_mix(res)
 
     if normal is not None:
@@ -121,33 +119,21 @@ def linearisation_cost(result, repeats=30, rounds=5):
 
 
 def _discretisation(result):
-    """The discretisation the result's path was traced on (rebuilt from its input)."""
+    """The discretisation the result's path was traced on (rebuilt from its input and the
+    mesh fit its provenance records)."""
     from shell_adhesion.solver.forms import discretise
     from shell_adhesion.solver.geometry import Cap
     from shell_adhesion.solver.mesh import cap_mesh
-    from shell_adhesion.solver.request import a_star_estimate, even_arc
-    from shell_adhesion.study.cohesive_case import fitted_spec, zone_estimate, zone_refinement
-    c = result.input.case
+    from shell_adhesion.study.cohesive_case import fitted_spec
+    c, prov = result.input.case, result.provenance
     cap = Cap(c.t_mm / c.R_mm, c.h_mm / c.R_mm)
-    a_need = a_star_estimate(cap, result.input.gamma_hat)
-    fit = dict(uniform=even_arc(cap, a_need),
-               refine=zone_refinement(zone_estimate(result.input.gamma_hat, result.input.tabor),
-                                      c.mesh, result.input.zone_elements))
+    fit = dict(uniform=prov["even_arc"], refine=prov["zone_refinement"])
     return discretise(cap_mesh(cap, fitted_spec(c.mesh, fit)))
 
 
 def _solve(lam, mesh, beta, history, bars):
-    """The case at `beta` (None: the Interface's normal-only code, swapped in for beta 0)."""
-    if beta is not None:
-        return solve_cohesive_case(**SHELL, tabor=lam, interface="no_slip", mesh=mesh,
-                                   beta=beta, history=history, error_bars=bars)
-    real = cc.Interface
-    cc.Interface = lambda d, law, beta=None: real(d, law, None)
-    try:
-        return solve_cohesive_case(**SHELL, tabor=lam, interface="no_slip", mesh=mesh,
-                                   beta=0.0, history=history, error_bars=bars)
-    finally:
-        cc.Interface = real
+    return solve_cohesive_case(**SHELL, tabor=lam, interface="no_slip", mesh=mesh,
+                               beta=beta, history=history, error_bars=bars)
 
 
 if __name__ == "__main__":

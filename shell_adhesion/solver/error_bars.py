@@ -28,7 +28,7 @@ mesh) is outside the range where the error falls with the size: it does not ente
 (`coarsest_usable`; the callers then give two meshes).  Measured on t/R 0.02, h/R 0.2
 (P* on 1, 2, 4, 8 layers; bar / distance of the default mesh to the fine one, with the
 coarser mesh -> without): gamma/(C10 R) 0.001 (its own mesh) 20 -> 1.8, 0.005 1.02 ->
-2.4, 0.015 5.0 -> 1.6, 0.03 3.4 -> 3.4; 0.001 on the mesh fitted to 0.03 28 -> 69 (there
+2.4, 0.015 5.0 -> 1.6, 0.03 3.4 -> 3.4; 0.001 on the mesh fitted to 0.03 28 -> 68 (there
 the default mesh lies 0.012 % from the fine one, 1/24 of its own step: no two-mesh rule
 sees that).
 

@@ -3,11 +3,13 @@
 and after: the figures are only comparable at the same load), the time per test file and
 the slowest tests (setup, call and teardown each, as `pytest --durations=0` reports them).
 
-Run:  python benchmarks/suite_durations.py                 (runs the default tier: about 15
-                                                          minutes on 2 cores)
+Run:  python benchmarks/suite_durations.py                 (runs the default tier in two
+                                                          worker processes, pyproject's
+                                                          addopts: about 10 minutes on 2
+                                                          cores; per-file times add both)
       python benchmarks/suite_durations.py --from run.txt  (the page from the output of
                                                           `python -m pytest -q --durations=0`)
-Extra pytest arguments follow `--`, e.g. `-- -n 2` with pytest-xdist.
+Extra pytest arguments follow `--`, e.g. `-- -n 0` for one process.
 """
 import argparse
 from collections import defaultdict

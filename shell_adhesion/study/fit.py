@@ -9,9 +9,9 @@ One set of FE paths of the shell (t/R, h/R) serves every C10 and gamma (DESIGN.m
 3); `solver.fit` removes the baseline, finds the jump-off, and fits C10, gamma and the
 contact offset delta0 (measured delta = model delta + delta0) by least squares, and also
 what the half-space tools give (Hertz loading, JKR pull-off).  The fit repeated on the next
-coarser mesh gives the model's error: the 95 % intervals (profile likelihood) are widened
-by it, and a residual beyond solver.fit.MISFIT_FACTOR x hypot(noise, model error) is a
-misfit (solver.fit.Misfit, exit 1).  P > 0 compression, delta > 0 approach.
+coarser mesh gives the model's error: the 95 % intervals (C10 and delta0 profile likelihood
+on the loading, gamma linearised) are widened by it, and a residual beyond
+solver.fit.MISFIT_FACTOR x hypot(noise, model error) is a misfit (solver.fit.Misfit, exit 1).  P > 0 compression, delta > 0 approach.
 """
 import csv
 from dataclasses import dataclass, field
@@ -227,7 +227,7 @@ def fit_input(R_mm, t_mm, h_mm, curve, pull_off_N=None, interface="no_slip",
 @dataclass(frozen=True, eq=False)
 class FitResult:
     """A fitted curve: C10 [MPa], gamma [J/m^2] and delta0 [mm] (the contact point) with
-    95 % intervals (the data's scatter, profile likelihood, and the model's discretisation
+    95 % intervals (the data's scatter, and the model's discretisation
     error from the same fit on the next coarser mesh, in quadrature), the baseline removed,
     the goodness of fit (`verdict`), the half-space answer (`jkr`), and the paths and
     estimates behind them (dimensionless, `solver.fit`)."""
@@ -335,8 +335,10 @@ class FitResult:
                                 "hypot(noise sd, model error rms)"},
             "model_error": {k: float(val) for k, val in self.model_errors().items()},
             "points_used": dict(e.used),
-            "intervals": (("95 %, profile likelihood (F(1, m - n) on the residual sum of "
-                           "squares, baseline and other parameters refitted)")
+            "intervals": (("95 %: C10 and delta0 profile likelihood on the loading (F(1, m - n) "
+                           "on its residual sum of squares, baseline and the other refitted), "
+                           "gamma linearised on the retraction with their uncertainty carried "
+                           "through")
                           if e.intervals else "95 %, linearised: s^2 (J^T J)^-1, Student t"
                           + ("; gamma's from C10's only (the pull-off force taken as exact)"
                              if e.gamma_from == "pull_off" else ""))
@@ -381,7 +383,7 @@ def fit_curve(R_mm, t_mm, h_mm, curve, *, pull_off_N=None, interface="no_slip",
     -------
     FitResult
         ``.to_dict()``: C10_MPa, gamma_J_m2 and delta0_mm (the contact point) with 95 %
-        intervals (profile likelihood, widened by the model's error from the next coarser
+        intervals (the data's scatter, widened by the model's error from the next coarser
         mesh), the baseline removed, residual_rms_N against noise_sd_N and
         model_error_rms_N (the verdict), the rows used from each part and the half-space
         (Hertz + JKR) answer ``jkr``.

@@ -4,7 +4,8 @@ instrument exports; the misfit verdict; intervals that hold the model's error.
 
 The curves come from the default mesh (tests/data/fit_*.csv, `benchmarks/fit_curves.py`:
 no stored CalculiX or FElupe curve has a retraction of these shells) and are fitted on the
-coarse mesh, so every round trip carries the model's own discretisation error.  Around the
+coarse mesh, so every round trip carries the model's own discretisation error (one, made
+on the fine mesh, is fitted on the default mesh).  Around the
 stored attached curve each test adds a non-contact approach (1 mm, 50 rows), the drop and
 20 detached rows, an offset delta0 = 0.05 mm of the contact point, and what it tests
 (`fit_curves.lab_curve`); `python benchmarks/fit_curves.py table` prints the table."""
@@ -106,6 +107,27 @@ def test_noise_free_width(name, tmp_path_factory):
     for key in ("C10_MPa", "gamma_J_m2"):
         lo, hi = out[f"{key}_ci95"]
         assert (hi - lo) / out[key] < 0.03, key
+
+
+def test_default_mesh_fits_a_fine_mesh_curve(tmp_path):
+    """Issue 39 item 5 on the fit's default mesh: the base shell's noise-free curve made on
+    the fine mesh (tests/data/fit_base_fine.csv: `python benchmarks/fit_curves.py fine
+    base`) fitted on the default mesh: each truth inside its interval, each interval below
+    3 % wide, C10 within 0.1 % and gamma within 0.3 % (docs/fit.md: -0.04 % and +0.24 %;
+    the joint fit's gamma interval missed the truth here)."""
+    truth = stored("base_fine")[0]
+    path = write_csv(tmp_path / "fine.csv", lab_curve("base_fine"))
+    out = fit_curve(truth["R_mm"], truth["t_mm"], truth["h_mm"], path,
+                    mesh="default").to_dict()
+    print(out["C10_MPa"], out["C10_MPa_ci95"], out["gamma_J_m2"], out["gamma_J_m2_ci95"])
+    for key, true in (("C10_MPa", truth["C10_MPa"]), ("gamma_J_m2", truth["gamma_J_m2"]),
+                      ("delta0_mm", DELTA0_MM)):
+        lo, hi = out[f"{key}_ci95"]
+        assert lo < true < hi, key
+    for key, tol in (("C10_MPa", 0.001), ("gamma_J_m2", 0.003)):
+        lo, hi = out[f"{key}_ci95"]
+        assert (hi - lo) / out[key] < 0.03, key
+        assert abs(out[key] / truth[key] - 1) < tol, key
 
 
 INSTRUMENTS = {

@@ -28,8 +28,8 @@ off on the coarse mesh, against 0.14 % from the loading alone).
 
 Intervals (95 %): C10 and x0 profile likelihood on the loading (`profile_intervals`), gamma
 linearised with their uncertainty carried through (`_gamma_interval`), each widened in
-quadrature by the model's discretisation error (`with_model_error`); a fit whose residual rms exceeds
-MISFIT_FACTOR x hypot(noise, model error) is a misfit (`verdict`, `Misfit`).
+quadrature by the model's discretisation error (`with_model_error`); a fit whose residual
+rms exceeds MISFIT_FACTOR x hypot(noise, model error) is a misfit (`verdict`, `Misfit`).
 Pure functions (no files, no printing).
 """
 from dataclasses import dataclass, field, replace
@@ -617,18 +617,6 @@ def _start_gamma(ps: PathSet, C10, pr, span) -> float:
         return gamma_of_P_star(ps, C10, low, span)
     except FitError:
         return float(np.sqrt(span[0] * span[1]))
-
-
-def _with_baseline(core, x, nb):
-    """Residuals of `core` (of the first three parameters) plus a baseline correction
-    v[3] + v[4] x at the points x when nb = 2 (the baseline fitted with the rest)."""
-    if not nb:
-        return core
-    x = np.asarray(x, float)
-
-    def resid(v):
-        return core(v[:3]) + v[3] + (v[4] * x if nb == 2 else 0.0)
-    return resid
 
 
 def _pull_off_estimate(ps: PathSet, load, p_star, used) -> Estimate:

@@ -11,7 +11,8 @@ contact offset delta0 (measured delta = model delta + delta0) by least squares, 
 what the half-space tools give (Hertz loading, JKR pull-off).  The fit repeated on the next
 coarser mesh gives the model's error: the 95 % intervals (C10 and delta0 profile likelihood
 on the loading, gamma linearised) are widened by it, and a residual beyond
-solver.fit.MISFIT_FACTOR x hypot(noise, model error) is a misfit (solver.fit.Misfit, exit 1).  P > 0 compression, delta > 0 approach.
+solver.fit.MISFIT_FACTOR x hypot(noise, model error) is a misfit (solver.fit.Misfit, exit 1).
+P > 0 compression, delta > 0 approach.
 """
 import csv
 from dataclasses import dataclass, field

@@ -33,7 +33,9 @@ CURVES = {
                                                         # tests take every 4th point or all)
     "thin": (15.0, 1.5, 11.25, 0.5, 20.0, 1.5, 150),    # issue 39's thin shell
     "other": (40.0, 6.0, 40.0, 0.3, 30.0, 2.0, 150),    # the base shell x 2 (fitted as the base)
+    "base_frictionless": (20.0, 3.0, 20.0, 0.3, 30.0, 2.0, 150),
 }
+INTERFACE = {"base_frictionless": "frictionless"}       # the others: no_slip
 
 
 @functools.lru_cache(maxsize=None)
@@ -105,7 +107,8 @@ def make(name, mesh="default"):
     g_hat = gamma * 1e-3 / (C10 * R)
     top = gamma_bucket(1.5 * g_hat)
     t0 = time.perf_counter()
-    ps, _, _ = solve_request(t / R, h / R, Request.serving(top, depth / R), top, "no_slip", mesh)
+    ps, _, _ = solve_request(t / R, h / R, Request.serving(top, depth / R), top,
+                             INTERFACE.get(name, "no_slip"), mesh)
     x, p = simulated_curve(ps, C10, g_hat, depth / R, n, n, n_detached=0)
     return x * R, p * R ** 2, time.perf_counter() - t0
 
@@ -115,7 +118,8 @@ def write(name, mesh="default"):
     R, t, h, C10, gamma, depth, _ = CURVES[name]
     path = OUT / (f"fit_{name}.csv" if mesh == "default" else f"fit_{name}_{mesh}.csv")
     lines = [f"# R_mm={R:g} t_mm={t:g} h_mm={h:g} C10_MPa={C10:g} gamma_J_m2={gamma:g} "
-             f"depth_mm={depth:g} mesh={mesh} interface=no_slip (benchmarks/fit_curves.py)",
+             f"depth_mm={depth:g} mesh={mesh} interface={INTERFACE.get(name, 'no_slip')} "
+             "(benchmarks/fit_curves.py)",
              "delta_mm,P_N"] + [f"{a:.9g},{b:.9g}" for a, b in zip(d, P)]
     path.write_text("\n".join(lines) + "\n", encoding="utf-8")
     print(f"{path}: {len(d)} rows, {wall:.1f} s")
@@ -125,6 +129,7 @@ TABLE_CASES = dict(
     {name: (curve, fmt, "base") for name, (curve, fmt) in CASES.items()},
     noise_free_base=(dict(), {}, "base"),
     noise_free_thin=(dict(every=1), {}, "thin"),
+    noise_free_frictionless=(dict(every=1), {}, "base_frictionless"),
     shuffled_no_time=(dict(noise=0.01), dict(shuffle=True), "base"),
     other_shell=(dict(noise=0.01), {}, "other"),        # R 40 mm (base x 2) fitted as the base
     mN_read_as_N=(dict(noise=0.01, force_scale=1e3), {}, "base"),
@@ -155,7 +160,8 @@ def table(mesh="coarse") -> str:
             with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
                 code = main(["fit", "--R", f"{fitted_as['R_mm']:g}", "--t",
                              f"{fitted_as['t_mm']:g}", "--h", f"{fitted_as['h_mm']:g}",
-                             "--curve", str(path), "--mesh", mesh, "--json"])
+                             "--curve", str(path), "--mesh", mesh, "--json",
+                             "--interface", INTERFACE.get(name, "no_slip")])
             if code == 0:
                 r = json.loads(out.getvalue())
                 c_lo, c_hi = r["C10_MPa_ci95"]

@@ -15,7 +15,8 @@ Rows (`--rows all` for every one; the default is the cheap ones, about 5 minutes
     pytest    `python -m pytest -q` on a fresh clone of the committed HEAD (~15 min)
     cohesive  `case --adhesion dugdale --tabor 3 --interface frictionless --no-error-bars`
               on the base shell (8-11 min)
-    map       `map build` of the default pull-off map, cold (~26 min)
+    map       `map build` of the default pull-off map, cold (stopped unfinished after 37
+              min on 2 cores in December 2026)
 
 Each ratio row runs anchor then ours, `--runs` times (A B A B ...), and keeps the median
 of the pair ratios; the CalculiX time is the ccx process's own (the deck is written

@@ -58,7 +58,8 @@ def main(argv):
                           flush=True)
                     continue
                 fl = po["fixed_load"]
-                open_P.setdefault(g, fl["P_N"] if f == 0 else None)
+                if f == 0:
+                    open_P[g] = fl["P_N"]
                 gain = (fl["P_N"] / open_P[g]) if open_P.get(g) else float("nan")
                 print(head + f"{fl['P_N']:.4f} +- {fl['P_N_error']:.2g} | {fl['a_mm']:.3f} | "
                       f"{gain:.3f} | {wall:.0f} |", flush=True)

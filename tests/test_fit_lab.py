@@ -201,6 +201,19 @@ def test_other_shell_is_a_misfit(tmp_path, capsys):
     assert caught.value.result.verdict.ratio > caught.value.result.verdict.factor
 
 
+def test_a_retraction_that_never_recedes_is_refused(tmp_path, capsys):
+    """A curve stopped 20 rows into its retraction, before the held contact recedes: those
+    points do not depend on gamma (the fit returned 0.057 J/m^2 for 30, with an infinite
+    interval): one line, exit 1."""
+    _, d, P = stored("base")
+    stop = int(np.argmax(d)) + 21
+    path = write_csv(tmp_path / "short.csv", {"delta_mm": d[:stop] + DELTA0_MM, "P_N": P[:stop]})
+    code = main(["fit", "--R", "20", "--t", "3", "--h", "20", "--curve", str(path),
+                 "--mesh", "coarse"])
+    err = capsys.readouterr().err
+    assert code == 1 and err.count("\n") == 1 and "do not depend on gamma" in err
+
+
 def test_force_unit_off(tmp_path, capsys):
     """Forces in mN under the header P_N (1000 x): the curve's shape is the right one
     (exact scaling), C10 = 300 MPa is not a soft solid's: one line, exit 1."""

@@ -424,7 +424,7 @@ def fit_curve(ps: PathSet, x, p, p_pull_off=None, hertz=None, split: Split = Non
         corr = _baseline_fn(stage1.x[2:])
         path = turn_path(ps, x.max() - x0)
         g_start = _start_gamma(ps, C10, pr - corr(xr), span)
-        g, r_ret = _fit_gamma(ps, path, C10, x0, xr, pr - corr(xr), g_start, span)
+        g, r_ret, J_ret = _fit_gamma(ps, path, C10, x0, xr, pr - corr(xr), g_start, span)
         if split is not None or refit == JUMP_REFITS - 1:
             break
         start = refine_jump(parts, p, attached_model(ps, C10, g, x0, x, parts) + corr(x), sd)
@@ -437,7 +437,7 @@ def fit_curve(ps: PathSet, x, p, p_pull_off=None, hertz=None, split: Split = Non
     if not intervals:
         return est
     C10_ci, x0_ci = profile_intervals(_loading_residuals(ps, xl, pl, nb), stage1)
-    gamma_ci = _gamma_interval(ps, path, stage1, g, r_ret, xr, pr, span)
+    gamma_ci = _gamma_interval(ps, path, stage1, g, r_ret, J_ret, xr, pr, span)
     return replace(est, C10_ci=C10_ci, gamma_ci=gamma_ci, x0_ci=x0_ci,
                    intervals="profile likelihood")
 
@@ -464,53 +464,50 @@ def _fit_loading_baseline(ps: PathSet, xl, pl, start, nb=0):
 
 
 def _fit_gamma(ps: PathSet, path: Relaxation, C10, x0, xr, pr, start, span) -> tuple:
-    """(gamma / (C10 R), residuals): gamma fitted to the retraction points (their baseline
-    removed) with C10 and x0 held."""
+    """(gamma / (C10 R), residuals, d residuals / d gamma_hat): gamma fitted to the
+    retraction points (their baseline removed) with C10 and x0 held.  FitError if the
+    points do not depend on gamma (all on the held contact's relaxation, above where it
+    meets the equilibrium curve G = gamma)."""
     def resid(v):
         return C10 * retraction(ps, path, v[0])(xr - x0) - pr
     sol = least_squares(resid, [float(np.clip(start, *span))], x_scale="jac",
                         bounds=([span[0]], [span[1]]), diff_step=1e-6, xtol=1e-12,
                         ftol=1e-12, gtol=1e-12)
-    return float(sol.x[0]), sol.fun
+    J = sol.jac[:, 0]
+    if not np.any(J):
+        raise FitError(f"the {len(xr)} retraction points used do not depend on gamma: they "
+                       "lie on the held contact's relaxation, before the contact recedes; "
+                       "record the retraction through the jump-off, or give --pull-off-N")
+    return float(sol.x[0]), sol.fun, J
 
 
-def _gamma_interval(ps: PathSet, path: Relaxation, stage1, g, r_ret, xr, pr, span) -> tuple:
+def _gamma_interval(ps: PathSet, path: Relaxation, stage1, g, r_ret, J, xr, pr,
+                    span) -> tuple:
     """95 % interval of gamma / R = g C10, linearised: the retraction's scatter with C10, x0
-    and the baseline held (s^2 / (J^T J), Student t), plus theirs from the loading's fit
-    carried through (the delta method: gamma / R refitted with each moved by one standard
-    deviation either way)."""
+    and the baseline held (s^2 / (J^T J), J = `J` / C10 the residuals' slope in gamma / R,
+    Student t), plus theirs from the loading's fit carried through (the delta method: gamma
+    / R refitted with each moved by one standard deviation either way)."""
     v1 = stage1.x
     cov1 = _covariance(stage1)
 
     def gR_of(v):
         corr = _baseline_fn(v[2:])
-        gv, _ = _fit_gamma(ps, path, v[0], v[1], xr, pr - corr(xr), g, span)
-        return gv * v[0]
+        return _fit_gamma(ps, path, v[0], v[1], xr, pr - corr(xr), g, span)[0] * v[0]
 
-    gR = g * v1[0]
     grad = np.zeros(len(v1))
     for i in range(len(v1)):
-        h = float(np.sqrt(max(cov1[i, i], 0.0))) or 1e-6 * max(abs(v1[i]), 1e-12)
+        sd = float(np.sqrt(max(cov1[i, i], 0.0)))
+        h = sd if np.isfinite(sd) and sd > 0 else 1e-6 * max(abs(v1[i]), 1e-12)
         up, down = v1.copy(), v1.copy()
         up[i] += h
         down[i] -= h
         grad[i] = (gR_of(up) - gR_of(down)) / (2 * h)
-    var1 = float(grad @ cov1 @ grad)
-    corr = _baseline_fn(v1[2:])
-    r = r_ret
-    dof = max(len(r) - 1, 1)
-    eps = 1e-6 * max(g, 1e-12)
-    g_up = _retraction_residuals(ps, path, v1, g + eps, xr, pr - corr(xr))
-    J = (g_up - r) / eps / v1[0]    # d residual / d (gamma / R) at fixed C10
-    var2 = float(r @ r) / dof / float(J @ J) if float(J @ J) > 0 else np.inf
-    sd = float(np.sqrt(var1 + var2))
-    half = float(student_t.ppf(0.975, dof)) * sd
+    dof = max(len(r_ret) - 1, 1)
+    J_gR = J / v1[0]
+    var = float(grad @ cov1 @ grad) + float(r_ret @ r_ret) / dof / float(J_gR @ J_gR)
+    half = float(student_t.ppf(0.975, dof)) * float(np.sqrt(var))
+    gR = g * v1[0]
     return (gR - half, gR + half)
-
-
-def _retraction_residuals(ps: PathSet, path: Relaxation, v1, g, xr, pr):
-    """The retraction's residuals at gamma / (C10 R) = g with (C10, x0) = v1[:2]."""
-    return v1[0] * retraction(ps, path, g)(xr - v1[1]) - pr
 
 
 def profile_intervals(resid, full, which=(0, 1)) -> list:

@@ -13,6 +13,7 @@
     shell-adhesion analyse results/paper.nc
     shell-adhesion map query|build|plot ...      (the pull-off map; see study.map_commands)
     shell-adhesion design --C10 0.3 --gamma 30 --R 20 [--objective pull_off] [--t MIN MAX]
+    shell-adhesion snap --R 20 --t 0.4 --h 20 --C10 0.3 [--pocket sealed] ...  (study.snap_commands)
     shell-adhesion example paper|mooney-rivlin|map|map-coarse > workflow.yaml
     shell-adhesion --version
 
@@ -36,7 +37,7 @@ from shell_adhesion import __version__, examples
 from shell_adhesion.errors import ConvergenceError, InputError, MaterialLimitError
 from shell_adhesion.solver import INTERFACES
 from shell_adhesion.study import case as case_api
-from shell_adhesion.study import map_commands
+from shell_adhesion.study import map_commands, snap_commands
 from shell_adhesion.study.case_input import MESHES, case_input
 from shell_adhesion.study.cohesive_case import ADHESIONS
 
@@ -653,6 +654,7 @@ def _parser():
                          help="trends of |P*|, eta fit, slope in gamma, JKR ratio of a results cube")
     ana.add_argument("results", help="results netCDF written by `run` (results/<name>.nc)")
     map_commands.add_parsers(sub, _OneDash)
+    snap_commands.add_parser(sub, _OneDash)
     ex = sub.add_parser("example", help="print a study file shipped with the package (paper: "
                                         "the paper's study, the repository's workflow.yaml)")
     ex.add_argument("name", choices=tuple(examples.STUDIES),
@@ -731,6 +733,8 @@ def main(argv=None):
             return _build_map(ns)
         if ns.command in ("map", "design"):
             return map_commands.run(ns)
+        if ns.command == "snap":
+            return snap_commands.run(ns)
     except InputError as err:
         print(f"shell-adhesion: error: {err}", file=sys.stderr)
         return 2

@@ -31,11 +31,11 @@ centre carries almost no pressure, and the penalty's slope vanishes with the pre
 a soft contact lets the centre lift early: the shell's loss of stability (a bifurcation
 where the centre lifts off) becomes a fold reached sooner, as an imperfection would make
 it.  t/R 0.02, h/R 1, coarser mesh: with an onset of 1e-4, 7e-5, 5e-5 R the traced jump
-is at 4.37, 4.61, 4.89 t (at 1e-4 R: 4.37 t on the coarse mesh, 4.86 t on the default);
+is at 4.37, 4.61, 4.89 t (at 1e-4 R: 4.83 t on the coarse mesh, 4.90 t on the default);
 with a sharp contact (1e-5, 3e-6, 1e-6 R) the loading stops at 6.27, 6.325, 6.331 t
-(3e-6 R: coarse 6.328, default 6.339 t), where delta and P stand still while the centre
+(3e-6 R: coarse 6.337, default 6.339 t), where delta and P stand still while the centre
 lifts, and the continuation cannot pass: the converged snap is there, about 6.33 t, and
-the jump traced with the default onset comes 31 % early on the coarse mesh.  Only
+the jump traced with the default onset comes 24 % early on the coarse mesh.  Only
 stiffness / onset counts (the penetration stays within the onset).  The
 branch after the jump hardly depends on it (Pogorelov slope 0.583 at all three onsets).
 
@@ -68,8 +68,9 @@ import numpy as np
 
 from shell_adhesion.errors import ConvergenceError, InputError
 
-from .arclength import ArcSettings, _Continuation, work as arc_work
-from .cohesive import Interface, penalty, point_anchors_at
+from .arclength import (SWITCH_OFF, ArcSettings, _Continuation, _switch_on, _vertex,
+                        work as arc_work)
+from .cohesive import CohesiveLaw, Interface, penalty, point_anchors_at, scaled
 from .contact import INTERFACES, constraints, gaps, rim_load
 from .forms import Discretisation, discretise, strain_energy
 from .geometry import T_MIN, Cap, check_cap, check_delta_max
@@ -156,7 +157,7 @@ class SnapSettings:
     #                            square of the penetration over this depth.  The sharpest
     #                            the continuation passes the snap with (t/R 0.02; 4e-5
     #                            turns back along the path, 3e-5 and below stop where the
-    #                            centre lifts off); it makes the jump early (31 % at t/R
+    #                            centre lifts off); it makes the jump early (24 % at t/R
     #                            0.02): module docstring
 
 
@@ -252,8 +253,16 @@ class SnapPath:
 
     def work(self) -> np.ndarray:
         """The work of P from the first state to each (integral of P d delta, C10 R^3),
-        along the path through its folds (`arclength.work`)."""
-        return arc_work(self)
+        along the path through its folds (`arclength.work`); nothing over a step at
+        fixed delta (a law switched on at the turn)."""
+        D = self.array("delta")
+        cuts = [0] + [k + 1 for k in range(len(D) - 1) if D[k + 1] == D[k]] + [len(D)]
+        W, done = np.zeros(len(D)), 0.0
+        for a, b in zip(cuts[:-1], cuts[1:]):
+            part = arc_work(dataclasses.replace(self, states=self.states[a:b]))
+            W[a:b] = done + part
+            done = W[b - 1]
+        return W
 
 
 def contact_set(iface: Interface, x) -> tuple:
@@ -286,7 +295,7 @@ def contact_set(iface: Interface, x) -> tuple:
 
 def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = SnapSettings(),
                   progress=None, unload_to: float = None,
-                  interface: str = "frictionless") -> SnapPath:
+                  interface: str = "frictionless", adhesion: CohesiveLaw = None) -> SnapPath:
     """The frictionless loading without adhesion from delta = 0 to delta_max / R, by arc
     length through every fold (module docstring), and, with `unload_to`, the unloading
     from there on by the same continuation (delta decreasing) to unload_to / R (< 0: a pull).
@@ -306,7 +315,20 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
     converged state before it touched, by a tangential penalty of the normal one's
     stiffness (`PenaltyContact.mixed`; anchors per quadrature point, updated at converged
     states, `cohesive.point_anchors_at`); it lets go as it lifts off (gamma = 0: the
-    contact carries no tension)."""
+    contact carries no tension).
+
+    `adhesion` (a `cohesive.CohesiveLaw`, frictionless, with unload_to): finite-range
+    adhesion switched on at the turn at fixed delta (`arclength._switch_on`: pressed
+    without adhesion, as the energy method's loading, then the law ramped in; the
+    contact penalty becomes the law's own).  The energy the switch adds at fixed delta
+    (U + Pi + E_gas after minus before; no work of P) is recorded as the turn state's
+    `anchor_jump`, and the switched state follows it at the same delta (`SnapPath.work`
+    adds nothing over a step at fixed delta).  The unloading steps change no outer gap by
+    more than ArcSettings.dx_max delta_c, and the path ends ("") where every outer point
+    is beyond the law's reach (detached) or at unload_to."""
+    if adhesion is not None and (unload_to is None or interface != "frictionless"):
+        raise ValueError("adhesion: a cohesive law needs an unloading (unload_to) and the "
+                         "frictionless interface")
     if not (math.isfinite(delta_max) and delta_max > 0):
         raise ValueError(f"delta_max: {delta_max!r} must be a finite number > 0 (units of R)")
     if unload_to is not None and not (math.isfinite(unload_to) and unload_to < delta_max):
@@ -390,6 +412,10 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
         elif turn >= 0 and delta <= unload_to:
             ended_by = ""
             break
+        elif (adhesion is not None and turn >= 0 and len(states) - 1 > turn
+              and gaps(d, x, cn.candidates).min() > adhesion.reach):
+            ended_by = ""           # detached: out of the law's reach
+            break
         seals = pocket is not None and pocket.sealed and not cn.d.cavity.sealed and (
             turn == len(states) - 1 if s.seal_at_turn
             else states[-1].ring and states[-1].apex_gap > s.seal_lift * d.capmesh.cap.t)
@@ -402,7 +428,7 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
             if sticks:
                 beta = 1.0
                 anchors = point_anchors_at(cn.iface, x)
-            cn = _Continuation(Interface(seal(cn.d, x) if seals else cn.d, law, beta),
+            cn = _Continuation(Interface(seal(cn.d, x) if seals else cn.d, cn.iface.law, beta),
                                "frictionless", arc)
             cn.anchors = anchors
             timers.append(cn.timer)
@@ -410,9 +436,53 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
             K, r = cn.linearise(x)
             t = cn.tangent_at(K, c, t)
             states[-1] = _state(cn, x, delta, K, r, t, it, states[-1].seconds, slope)
+        if adhesion is not None and turn == len(states) - 1:
+            try:
+                cn, x, K, r, c, t, n = _adhere(cn, adhesion, c, x, delta, arc)
+            except ConvergenceError as err:
+                ended_by = f"the adhesion did not switch on at delta = {delta:.6g} R ({err})"
+                break
+            timers.append(cn.timer)
+            before = states[-1]
+            states.append(_state(cn, x, delta, K, r, t, n, 0.0))
+            after = states[-1]
+            states[-2] = dataclasses.replace(before, anchor_jump=before.anchor_jump + (
+                after.U + after.Pi + after.E_gas - before.U - before.Pi - before.E_gas))
+            turn = len(states) - 1
+            dz_max = min(dz_max, arc.dx_max * adhesion.delta_c)
+            ds = min(ds, dz_max)
+            if progress is not None:
+                progress(states[-1])
         if it <= s.easy:
             ds *= s.grow
     return SnapPath(tuple(states), ended_by, _sum(timers), turn)
+
+
+def _adhere(cn, law, c, x, delta, arc):
+    """Switch finite-range adhesion (`law`) on at fixed delta: a new continuation on the
+    cohesive interface, the law ramped in from SWITCH_OFF (`arclength._switch_on`).
+    Returns (continuation, x, K, r, constraints, tangent oriented to unload, iterations)."""
+    iface = Interface(cn.d, law, None)
+    new = _Continuation(iface.with_law(scaled(law, SWITCH_OFF)), "frictionless", arc)
+    x, K, r, c, _, n = _switch_on(new, iface, c, x, delta, np.zeros(0, dtype=int),
+                                  "frictionless")
+    t = new.tangent_at(K, c, (np.zeros(cn.d.ndof), -1.0))
+    return new, x, K, r, c, t, n
+
+
+def adhesive_pull_off(path: SnapPath) -> tuple:
+    """(P*, delta*) of the unloading (from the turn): the least P, the vertex of the
+    parabola through the least sampled P and its two neighbours (units of C10 R^2 and R;
+    P* < 0 a tensile pull-off).  ValueError where the unloading does not reach it."""
+    if path.turn < 0:
+        raise ValueError("the path did not turn: no unloading")
+    D = path.array("delta")[path.turn:]
+    P = path.array("P")[path.turn:]
+    i = int(np.argmin(P))
+    if i in (0, len(P) - 1):
+        raise ValueError("the unloading does not reach its least P")
+    d_star, P_star = _vertex(D[i - 1:i + 2], P[i - 1:i + 2])
+    return P_star, d_star
 
 
 def _check_interface(interface):

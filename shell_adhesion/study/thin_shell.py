@@ -1,0 +1,311 @@
+"""One thin shell pressed through its snap and, optionally, pulled back with the pocket
+under its dimple vented or sealed: `shell-adhesion snap` (solver.snap, solver.pocket).
+
+Inputs in the user's units: R, t, h, delta_max and unload_to in mm, C10 in MPa, the
+ambient pressure in kPa.  Outputs the same: delta in mm (> 0 approach), P in N (> 0
+compression), radii in mm, the pocket's volume in mm^3 and its gauge pressure in kPa
+(> 0 pushes the shell off the plane).  Frictionless or sticking contact, no adhesion
+(gamma = 0): the energy method's relaxations from ring states are not built.
+"""
+from dataclasses import dataclass
+import dataclasses
+import json
+import math
+
+import numpy as np
+
+from shell_adhesion.errors import InputError
+from shell_adhesion.solver import pocket as pk
+from shell_adhesion.solver.cavity import P_ATM_KPA
+from shell_adhesion.solver.contact import INTERFACES
+from shell_adhesion.solver.forms import discretise
+from shell_adhesion.solver.geometry import DEPTH_SHARE, check_delta_max, domain_delta_max
+from shell_adhesion.solver.mesh import cap_mesh, mesh_spec
+from shell_adhesion.solver.scaling import check_C10, check_finite, check_R, force_N
+from shell_adhesion.solver.snap import SnapSettings, loading_cap, ring_arc, trace_loading
+
+MESHES = ("coarser", "coarse", "default")
+SEALS = ("turn", "ring")           # the gas is trapped at the turn, or at the first ring
+STICKS = ("turn", "touch")         # no_slip: the contact sticks from the turn, or from
+#                                    the first touch (then the shell does not snap)
+DELTA_MAX_T = 10.0                 # default press, in thicknesses (past the snap at 4-6 t)
+ENERGY_TOL = 1e-3                  # the energy balance a path is vouched for at (of max U)
+# the field names of the Python API; the command passes its flags instead
+API_NAMES = dict(R_mm="R_mm", t_mm="t_mm", h_mm="h_mm", C10_MPa="C10_MPa",
+                 delta_max_mm="delta_max_mm", unload_to_mm="unload_to_mm", pocket="pocket",
+                 gas_exponent="gas_exponent", p_atm_kPa="p_atm_kPa", seal="seal",
+                 interface="interface", stick="stick", mesh="mesh")
+
+
+@dataclass(frozen=True)
+class SnapInput:
+    """A checked thin-shell loading (`snap_input`), in the user's units."""
+
+    R_mm: float
+    t_mm: float
+    h_mm: float
+    C10_MPa: float
+    delta_max_mm: float
+    unload_to_mm: float            # None: the loading alone
+    pocket: str
+    gas_exponent: float
+    p_atm_kPa: float
+    seal: str
+    interface: str
+    stick: str
+    mesh: str
+
+    @property
+    def p_atm_over_C10(self) -> float:
+        return pk.p_atm_over_C10(self.p_atm_kPa, 1000.0 * self.C10_MPa)
+
+
+def snap_input(R_mm, t_mm, h_mm, C10_MPa, delta_max_mm=None, unload_to_mm=None,
+               pocket="vented", gas_exponent=1.0, p_atm_kPa=P_ATM_KPA, seal="turn",
+               interface="frictionless", stick="turn", mesh="coarse",
+               names=None) -> SnapInput:
+    """The checked input; InputError (one line naming the field as `names` calls it,
+    default API_NAMES) on the first rule broken.  delta_max defaults to 10 t (at most
+    the domain's bound); a sealed pocket without unload_to is pulled to -t."""
+    n = dict(API_NAMES, **(names or {}))
+    R = check_finite(R_mm, n["R_mm"], "mm")
+    check_R(R, n["R_mm"])
+    t, h = (check_finite(v, n[k], "mm") for k, v in (("t_mm", t_mm), ("h_mm", h_mm)))
+    C10 = check_finite(C10_MPa, n["C10_MPa"], "MPa")
+    check_C10(C10, n["C10_MPa"])
+    try:
+        loading_cap(t / R, h / R)
+    except InputError as e:
+        field, _, rule = str(e).partition(": ")
+        raise InputError(f"{n['t_mm'] if field == 't/R' else n['h_mm']}: "
+                         f"{t if field == 't/R' else h:g} mm ({e})") from None
+    for key, value, allowed in (("pocket", pocket, pk.MODES), ("seal", seal, SEALS),
+                                ("interface", interface, INTERFACES),
+                                ("stick", stick, STICKS), ("mesh", mesh, MESHES)):
+        if value not in allowed:
+            raise InputError(f"{n[key]}: {value!r} must be one of {', '.join(allowed)}")
+    if delta_max_mm is None:
+        delta_max_mm = min(DELTA_MAX_T * t, domain_delta_max(t / R) * R, DEPTH_SHARE * h)
+    delta_max = check_finite(delta_max_mm, n["delta_max_mm"], "mm")
+    try:
+        check_delta_max(delta_max / R, h / R, name="delta/R", t_over_R=t / R)
+    except InputError as e:
+        raise InputError(f"{n['delta_max_mm']}: {delta_max:g} mm ({e})") from None
+    if unload_to_mm is None and pocket == "sealed":
+        unload_to_mm = -t
+    if unload_to_mm is not None:
+        unload_to_mm = check_finite(unload_to_mm, n["unload_to_mm"], "mm")
+        if not unload_to_mm < delta_max:
+            raise InputError(f"{n['unload_to_mm']}: {unload_to_mm:g} must be < the press "
+                             f"{delta_max:g} mm ({n['delta_max_mm']})")
+        if not unload_to_mm > -h:
+            raise InputError(f"{n['unload_to_mm']}: {unload_to_mm:g} must be > -h "
+                             f"({-h:g} mm)")
+    gas_exponent = check_finite(gas_exponent, n["gas_exponent"])
+    if not gas_exponent >= 1.0:
+        raise InputError(f"{n['gas_exponent']}: {gas_exponent:g} must be >= 1 (1 "
+                         "isothermal, 1.4 adiabatic air)")
+    p_atm_kPa = check_finite(p_atm_kPa, n["p_atm_kPa"], "kPa")
+    if not p_atm_kPa > 0:
+        raise InputError(f"{n['p_atm_kPa']}: {p_atm_kPa:g} must be > 0 (kPa)")
+    return SnapInput(R, t, h, C10, delta_max, unload_to_mm, pocket, gas_exponent, p_atm_kPa,
+                     seal, interface, stick, mesh)
+
+
+@dataclass(frozen=True)
+class SnapResult:
+    """The traced path of a SnapInput (solver.snap.SnapPath) in the user's units."""
+
+    input: SnapInput
+    path: object                   # solver.snap.SnapPath (dimensionless)
+    ndof: int
+
+    def mm(self, v):
+        return v * self.input.R_mm
+
+    def N(self, v):
+        return force_N(v, self.input.C10_MPa, self.input.R_mm)
+
+    def kPa(self, v):
+        return 1000.0 * self.input.C10_MPa * v
+
+    @property
+    def failed(self) -> str:
+        """Why the path stopped short ('' if it reached its end or the pocket opened)."""
+        end = self.path.ended_by
+        return "" if not end or end.startswith("pocket opened") else end
+
+    @property
+    def ended_by(self) -> str:
+        """How the path ended, in the user's units."""
+        end, last = self.path.ended_by, self.path.states[-1]
+        if not end:
+            return ("reached the unloading's end" if self.path.turn >= 0
+                    else "reached the press delta_max")
+        if end.startswith("pocket opened"):
+            return (f"the pocket opened (its contact ring was lost) at delta "
+                    f"{self.mm(last.delta):.5g} mm")
+        return f"{end} (last state at delta {self.mm(last.delta):.5g} mm; solver units R)"
+
+    @property
+    def energy_miss(self) -> float:
+        """The energy balance: the largest miss of (work of P) - (strain + contact penalty +
+        gas energy) along the path, over the largest strain energy."""
+        p = self.path
+        U = p.array("U")
+        jumps = np.concatenate([[0.0], np.cumsum(p.array("anchor_jump"))[:-1]])
+        miss = p.work() - U - p.array("Pi") - p.array("E_gas") + jumps
+        return float(np.abs(miss).max() / max(U.max(), 1e-300))
+
+    def contact_mm(self, s) -> str:
+        """A state's contact set with radii in mm, e.g. 'disc 0-4.2 + ring 6.1-7.0'."""
+        return " + ".join(("disc" if r0 == 0.0 else "ring")
+                          + f" {self.mm(r0):.4g}-{self.mm(r1):.4g}"
+                          for r0, r1 in s.radii) or "none"
+
+    def states(self) -> list:
+        """One dict per state: delta_mm, P_N, contact, apex_mm (height of the apex above
+        the plane), V_mm3, p_kPa, sealed, branch ('loading' or 'unloading')."""
+        out = []
+        for i, s in enumerate(self.path.states):
+            out.append(dict(state=i, delta_mm=self.mm(s.delta), P_N=self.N(s.P) + 0.0,
+                            contact=self.contact_mm(s), apex_mm=self.mm(s.apex_gap),
+                            V_mm3=self.input.R_mm ** 3 * s.V if s.sealed else math.nan,
+                            p_kPa=self.kPa(s.p), sealed=bool(s.sealed),
+                            branch="unloading" if 0 <= self.path.turn < i else "loading"))
+        return out
+
+    def jumps(self) -> list:
+        """The displacement-controlled jumps: delta_mm, P_N from and to, contact sets."""
+        return [dict(delta_mm=self.mm(j.delta), P_from_N=self.N(j.P_from),
+                     P_to_N=self.N(j.P_to),
+                     contact_from=self.contact_mm(self.path.states[j.i_from]),
+                     contact_to=self.contact_mm(self.path.states[j.i_to]))
+                for j in self.path.jumps()]
+
+    def first_ring(self):
+        """The first state whose contact is a ring around a dimple (the apex lifted by
+        more than SnapSettings.seal_lift thicknesses: the soft contact lifts a flattened
+        centre by about 1e-3 t long before), or None."""
+        i = self.path.first_ring(SnapSettings.seal_lift * self.input.t_mm / self.input.R_mm)
+        return None if i is None else self.states()[i]
+
+    def pocket(self):
+        """With a sealed pocket: where it sealed and opened, the pull-off it gave (the
+        most tensile P while sealed, 0 if P stayed compressive), the ideal suction force
+        p_a pi r_seal^2 at the largest seal radius, the gauge pressure's range; else None."""
+        sealed = [(i, s) for i, s in enumerate(self.path.states) if s.sealed]
+        if not sealed:
+            return None
+        P = np.array([s.P for _, s in sealed])
+        p = np.array([s.p for _, s in sealed])
+        r_max = max(s.r_seal for _, s in sealed)
+        first, last = sealed[0][1], sealed[-1][1]
+        return dict(sealed_at_mm=self.mm(first.delta), V0_mm3=self.input.R_mm ** 3 * first.V,
+                    seal_radius_mm=self.mm(first.r_seal),
+                    opened=self.path.ended_by.startswith("pocket opened"),
+                    last_delta_mm=self.mm(last.delta), last_P_N=self.N(last.P),
+                    last_p_kPa=self.kPa(last.p),
+                    pull_off_N=self.N(max(-P.min(), 0.0)),
+                    least_P_N=self.N(P.min()),
+                    ideal_suction_N=self.N(self.input.p_atm_over_C10 * math.pi * r_max ** 2),
+                    p_min_kPa=self.kPa(p.min()), p_max_kPa=self.kPa(p.max()))
+
+    def to_dict(self) -> dict:
+        s = self.path.states
+        return dict(input=dataclasses.asdict(self.input), dofs=self.ndof,
+                    ended_by=self.ended_by, failed=self.failed,
+                    jumps=self.jumps(), first_ring=self.first_ring(),
+                    turn_delta_mm=self.mm(s[self.path.turn].delta) if self.path.turn >= 0
+                    else None,
+                    least_P_unloading_N=(self.N(min(x.P for x in s[self.path.turn:]))
+                                         if self.path.turn >= 0 else None),
+                    pocket=self.pocket(), energy_balance=self.energy_miss,
+                    newton_iterations=self.path.timer.newton_iterations,
+                    states=self.states())
+
+    def to_json(self) -> str:
+        return json.dumps(_finite(self.to_dict()), indent=1)
+
+
+def _finite(v):
+    """NaN and inf as null (JSON has neither)."""
+    if isinstance(v, dict):
+        return {k: _finite(x) for k, x in v.items()}
+    if isinstance(v, list):
+        return [_finite(x) for x in v]
+    if isinstance(v, float) and not math.isfinite(v):
+        return None
+    return v
+
+
+def trace_snap(inp: SnapInput, progress=None) -> SnapResult:
+    """Press the shell of `inp` to delta_max (arc length through its snap), then, with
+    unload_to, unload (pull) by the same continuation; `progress(state)` after each
+    converged state (solver.snap.trace_loading)."""
+    T, H = inp.t_mm / inp.R_mm, inp.h_mm / inp.R_mm
+    delta_max = inp.delta_max_mm / inp.R_mm
+    d = discretise(cap_mesh(loading_cap(T, H), mesh_spec(inp.mesh, ring_arc(delta_max))))
+    if inp.pocket == "sealed":
+        d = pk.bind(d, pk.Pocket("sealed", inp.p_atm_over_C10, inp.gas_exponent))
+    settings = dataclasses.replace(SnapSettings(), seal_at_turn=inp.seal == "turn",
+                                   stick_at_turn=inp.stick == "turn")
+    unload_to = None if inp.unload_to_mm is None else inp.unload_to_mm / inp.R_mm
+    path = trace_loading(d, delta_max, settings, progress, unload_to=unload_to,
+                         interface=inp.interface)
+    return SnapResult(inp, path, int(d.ndof))
+
+
+def csv_text(result: SnapResult) -> str:
+    """Every state as CSV with a header naming the columns and their units."""
+    cols = ("state", "branch", "delta_mm", "P_N", "apex_mm", "V_mm3", "p_kPa", "contact")
+    lines = [",".join(cols)]
+    for s in result.states():
+        lines.append(",".join(f"{s[c]:.9g}" if isinstance(s[c], float) else
+                              f'"{s[c]}"' if c == "contact" else str(s[c]) for c in cols))
+    return "\n".join(lines) + "\n"
+
+
+def plot_snap(result: SnapResult, path):
+    """P against delta (loading and unloading, the jumps marked) and, with a sealed
+    pocket, its gauge pressure against delta; written to `path` (png, pdf or svg)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from shell_adhesion.atomic import atomic_path
+
+    rows = result.states()
+    D = np.array([s["delta_mm"] for s in rows])
+    P = np.array([s["P_N"] for s in rows])
+    sealed = np.array([s["sealed"] for s in rows])
+    unload = np.array([s["branch"] == "unloading" for s in rows])
+    pocket = result.pocket()
+    fig, axes = plt.subplots(1, 2 if pocket else 1, figsize=(10 if pocket else 5.5, 4))
+    ax = axes[0] if pocket else axes
+    ax.plot(D[~unload], P[~unload], "C0-", label="loading (arc length through the snap)")
+    if unload.any():
+        k = np.flatnonzero(unload)[0] - 1
+        ax.plot(D[k:], P[k:], "C1-", label="unloading" + (", pocket sealed" if pocket else ""))
+    for j in result.jumps():
+        ax.annotate("", (j["delta_mm"], j["P_to_N"]), (j["delta_mm"], j["P_from_N"]),
+                    arrowprops=dict(arrowstyle="->", color="C3"))
+    if result.jumps():
+        ax.plot([], [], "C3-", label="jump under displacement control")
+    ax.axhline(0.0, color="k", lw=0.6)
+    inp = result.input
+    ax.set_xlabel("rim approach δ [mm]")
+    ax.set_ylabel("rim load P [N] (> 0 compression)")
+    ax.set_title(f"R {inp.R_mm:g}, t {inp.t_mm:g}, h {inp.h_mm:g} mm, C10 {inp.C10_MPa:g} MPa, "
+                 f"{inp.interface}", fontsize=9)
+    ax.legend(fontsize=8)
+    if pocket:
+        bx = axes[1]
+        bx.plot(D[sealed], [s["p_kPa"] for s, m in zip(rows, sealed) if m], "C1-")
+        bx.set_xlabel("rim approach δ [mm]")
+        bx.set_ylabel("pocket gauge pressure [kPa]")
+        bx.set_title("sealed pocket", fontsize=9)
+    fig.tight_layout()
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, format=str(path).rsplit(".", 1)[-1].lower(), dpi=120)
+    plt.close(fig)

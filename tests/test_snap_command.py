@@ -1,0 +1,129 @@
+"""`shell-adhesion snap`: a thin shell through its snap, in the user's units.
+
+The physics of the path is tested in test_snap.py and test_pocket.py on the solver's
+dimensionless functions; here the command: its refusals (one line, exit 2, nothing
+written), the units at its edge (Reissner's law in newtons, the exact scaling of P with
+C10 R^2), and the sealed pocket's story as printed and written.
+"""
+import csv
+import json
+import math
+
+import numpy as np
+import pytest
+
+from shell_adhesion.cli import main
+from shell_adhesion.study import thin_shell
+
+SHELL = ["--R", "20", "--h", "20", "--C10", "0.3"]
+
+
+@pytest.mark.parametrize("args, says", [
+    (["--t", "0.05"], "--t: 0.05 mm (t/R: 0.0025 is outside"),
+    (["--t", "0.4", "--delta-max", "30"], "--delta-max: 30 mm"),
+    (["--t", "0.4", "--delta-max", "2", "--unload-to", "5"], "--unload-to: 5 must be <"),
+    (["--t", "0.4", "--gas-exponent", "0.5"], "--gas-exponent: 0.5 must be >= 1"),
+    (["--t", "0.4", "--p-atm-kPa", "-1"], "--p-atm-kPa: -1 must be > 0"),
+    (["--t", "0.4", "--gamma", "30"], "--gamma: 30 is not an input of snap"),
+    (["--t", "abc"], "--t: 'abc' must be a number (mm)"),
+    (["--t", "0.4", "--plot", "out.txt"], "--plot: out.txt: the file name must end in"),
+    (["--t", "0.4", "--csv", "no/such/folder.csv"], "the folder no/such does not exist"),
+])
+def test_bad_input_is_one_line_and_exit_2(args, says, capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert main(["snap", *SHELL, *args]) == 2
+    err = capsys.readouterr().err.strip()
+    assert says in err and "\n" not in err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_flattening_follows_reissner_in_newtons_and_scales_as_C10_R2(capsys, tmp_path):
+    """From 0.05 t (below it the contact penalty's onset, 1e-4 R, is a sizeable part of
+    delta) to t/2 the load is within 15 % of Reissner's 16 C10 t^2 delta / R, with every
+    quantity in the user's units; the same shell twice as large and twice as
+    stiff takes the same dimensionless path, so its loads are 8 times larger at twice
+    the approach (to round-off)."""
+    runs = []
+    for k, (R, C10) in enumerate(((20.0, 0.3), (40.0, 0.6))):
+        out = tmp_path / f"loading{k}.csv"
+        assert main(["snap", "--R", f"{R:g}", "--t", f"{0.02 * R:g}", "--h", f"{R:g}",
+                     "--C10", f"{C10:g}", "--delta-max", f"{0.01 * R:g}", "--mesh",
+                     "coarser", "--csv", str(out)]) == 0
+        rows = list(csv.DictReader(out.open()))
+        runs.append((np.array([float(r["delta_mm"]) for r in rows]),
+                     np.array([float(r["P_N"]) for r in rows])))
+    capsys.readouterr()
+    (d1, P1), (d2, P2) = runs
+    t_mm, C10, R = 0.4, 0.3, 20.0
+    m = (d1 >= 0.05 * t_mm) & (d1 <= t_mm / 2)
+    assert m.sum() >= 5
+    reissner = 16 * C10 * t_mm ** 2 * d1[m] / R
+    assert np.all(np.abs(P1[m] / reissner - 1) < 0.15)
+    assert len(d1) == len(d2)
+    np.testing.assert_allclose(d2, 2 * d1, rtol=1e-7, atol=1e-12)      # 9 digits in the CSV
+    np.testing.assert_allclose(P2, 8 * P1, rtol=1e-7, atol=1e-9 * np.abs(P2).max())
+
+
+SEALED = ["--t", "0.4", "--delta-max", "2", "--pocket", "sealed", "--mesh", "coarser"]
+
+
+@pytest.fixture(scope="module")
+def sealed():
+    """R 20, t 0.4, h 20 mm, C10 0.3 MPa pressed to 2 mm (past the snap at 4.4 t),
+    sealed at the turn and pulled until the pocket opens (coarser mesh): solved once."""
+    inp = thin_shell.snap_input(20, 0.4, 20, 0.3, delta_max_mm=2, pocket="sealed",
+                                mesh="coarser")
+    return thin_shell.trace_snap(inp)
+
+
+@pytest.fixture
+def snap(sealed, monkeypatch):
+    """`main` on the sealed shell's flags, answered by the solved fixture (the command's
+    input must be the fixture's)."""
+    def traced(inp, progress=None):
+        assert inp == sealed.input
+        return sealed
+    monkeypatch.setattr(thin_shell, "trace_snap", traced)
+    return lambda *more: main(["snap", *SHELL, *SEALED, *more])
+
+
+def test_sealed_pocket_story_in_the_users_units(snap, tmp_path, capsys):
+    assert snap("--json", "--csv", str(tmp_path / "s.csv"), "--plot", str(tmp_path / "s.png")) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["failed"] == "" and out["energy_balance"] < 1e-4
+    (jump,) = out["jumps"]
+    assert 4.0 < jump["delta_mm"] / 0.4 < 4.8 and jump["P_to_N"] < jump["P_from_N"]
+    assert jump["contact_from"].startswith("disc 0-") and jump["contact_to"].startswith("ring")
+    ring = out["first_ring"]
+    assert ring["apex_mm"] > 0.04 and ring["contact"].startswith("ring")
+    pk = out["pocket"]
+    assert pk["opened"] and pk["sealed_at_mm"] == pytest.approx(out["turn_delta_mm"])
+    # where the ring opens it carries nothing: the gas alone holds the rim,
+    # P = p pi r_seal^2 (kPa * 1e-3 = MPa = N/mm^2)
+    last = out["states"][-1]
+    r_seal = float(last["contact"].split()[1].split("-")[0])
+    assert last["P_N"] == pytest.approx(1e-3 * last["p_kPa"] * math.pi * r_seal ** 2, rel=2e-3)
+    # a dome's pocket is compressed as the rim rises: no tensile pull-off, far below
+    # the ideal suction force p_a pi r_seal^2
+    assert pk["pull_off_N"] == 0.0 and pk["least_P_N"] > 0 and pk["p_min_kPa"] >= 0.0
+    assert pk["ideal_suction_N"] == pytest.approx(
+        101.325e-3 * math.pi * pk["seal_radius_mm"] ** 2, rel=0.02)
+    rows = list(csv.DictReader((tmp_path / "s.csv").open()))
+    assert len(rows) == len(out["states"])
+    assert float(rows[-1]["P_N"]) == pytest.approx(last["P_N"], rel=1e-8)
+    assert (tmp_path / "s.png").stat().st_size > 10_000
+
+
+def test_text_report_names_the_jump_and_the_pocket(snap, capsys):
+    assert snap() == 0
+    text = capsys.readouterr().out
+    for says in ("jump at delta 1.7", "the jump's delta depends on the contact's softness",
+                 "pocket sealed at delta 2.0", "the pocket opened", "pull-off while sealed 0 N",
+                 "energy balance"):
+        assert says in text
+
+
+def test_an_unvouched_energy_balance_exits_1(snap, capsys, monkeypatch):
+    monkeypatch.setattr(thin_shell, "ENERGY_TOL", 1e-9)
+    assert snap() == 1
+    assert "failed: the energy balance misses by" in capsys.readouterr().err

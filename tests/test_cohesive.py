@@ -110,3 +110,33 @@ def test_a_path_that_passes_no_new_extreme_is_counted_as_stalled():
     assert [st.after(a, c, d, retracting=True) for a, c, d in
             [(0.19, 0.25, 0.01), (0.19, 0.25, 0.0), (0.195, 0.25, 0.002), (0.0, 0.1, 0.0),
              (0.0, 0.0, -0.01)]] == [0, 0, 1, 0, 0]
+
+
+class _Meridian:
+    """An interface stub whose outer surface has the given points along the meridian."""
+
+    def __init__(self, r, z, delta_c):
+        self.r, self.z = np.asarray(r, float)[None, :], np.asarray(z, float)[None, :]
+        self.law = CohesiveLaw(1.0, delta_c)
+
+    def _points(self, x):
+        return self.r, self.z, None
+
+
+def test_contact_and_zone_radii_follow_the_meridian_of_a_shell_pulled_flat():
+    """A shell pulled flat beyond 0.9 R curls back inward above its contact: points high
+    above the plane there have radii beyond the contact edge.  The zone edge c is where
+    the gap first reaches delta_c along the meridian (it was 0, sorting by radius: a
+    zone of -320 edges reported for t/R 0.02, h/R 1, gamma 180 J/m^2)."""
+    from shell_adhesion.solver.arclength import cohesive_radius, contact_radius
+    # flat to r = 0.9, then rising steeply and curling back to r 0.85 high up
+    r = [0.0, 0.3, 0.6, 0.9, 0.93, 0.95, 0.94, 0.9, 0.85]
+    z = [-1e-4, -1e-4, -1e-4, -1e-5, 0.02, 0.2, 0.5, 0.8, 1.0]
+    iface = _Meridian(r, z, delta_c=0.01)
+    a = contact_radius(iface, None)
+    assert 0.9 < a < 0.93
+    c = cohesive_radius(iface, None, a)
+    assert a < c < 0.93
+    assert c == pytest.approx(0.9 + 0.03 * (0.01 + 1e-5) / (0.02 + 1e-5))
+    # a lifted apex: no contact disc
+    assert contact_radius(_Meridian([0.0, 0.1, 0.2], [0.01, -1e-4, 0.01], 0.01), None) == 0.0

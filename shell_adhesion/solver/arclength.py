@@ -590,20 +590,20 @@ def work(path: ArcPath) -> np.ndarray:
 
 
 def _crossing(iface: Interface, x, level: float, a: float = 0.0) -> float:
-    """Deformed radius / R beyond a at which the outer surface's gap first reaches
-    `level` (linear between quadrature points); 0 if the gap there already exceeds it."""
+    """Deformed radius / R at which the outer surface's gap first reaches `level` along
+    the meridian from the apex, at or beyond the first point whose radius reaches a
+    (linear between quadrature points); 0 if the gap at the apex already reaches it.
+    Along the meridian, not sorted by radius: a shell pulled flat beyond 0.9 R curls
+    back inward above its contact, and its high points there have radii beyond a."""
     r, z, _ = iface._points(x)
     r, z = r.ravel(), z.ravel()
-    order = np.argsort(r)
-    r, z = r[order], z[order]
-    beyond = r >= a
-    r, z = r[beyond], z[beyond]
-    if not len(z) or z[0] >= level:
+    past = np.flatnonzero((r >= a) & (z >= level))
+    if not len(past):
+        return float(r.max())
+    j = int(past[0])
+    if j == 0:
         return 0.0
-    j = int(np.argmax(z >= level))
-    if z[j] < level:
-        return float(r[-1])
-    return float(r[j - 1] + (level - z[j - 1]) * (r[j] - r[j - 1]) / (z[j] - z[j - 1]))
+    return max(a, float(r[j - 1] + (level - z[j - 1]) * (r[j] - r[j - 1]) / (z[j] - z[j - 1])))
 
 
 def contact_radius(iface: Interface, x) -> float:

@@ -324,8 +324,9 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
     (U + Pi + E_gas after minus before; no work of P) is recorded as the turn state's
     `anchor_jump`, and the switched state follows it at the same delta (`SnapPath.work`
     adds nothing over a step at fixed delta).  The unloading steps change no outer gap by
-    more than ArcSettings.dx_max delta_c, and the path ends ("") where every outer point
-    is beyond the law's reach (detached) or at unload_to."""
+    more than ArcSettings.dx_max delta_c or dx_travel delta_max (as `arclength.trace`),
+    and the path ends ("") where every outer point is beyond the law's reach (detached)
+    or at unload_to."""
     if adhesion is not None and (unload_to is None or interface != "frictionless"):
         raise ValueError("adhesion: a cohesive law needs an unloading (unload_to) and the "
                          "frictionless interface")
@@ -449,7 +450,7 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
             states[-2] = dataclasses.replace(before, anchor_jump=before.anchor_jump + (
                 after.U + after.Pi + after.E_gas - before.U - before.Pi - before.E_gas))
             turn = len(states) - 1
-            dz_max = min(dz_max, arc.dx_max * adhesion.delta_c)
+            dz_max = min(dz_max, arc.dx_max * adhesion.delta_c, arc.dx_travel * delta_max)
             ds = min(ds, dz_max)
             if progress is not None:
                 progress(states[-1])

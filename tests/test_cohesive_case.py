@@ -59,8 +59,8 @@ BAD = [
     (DUGDALE + ["--tabor", "1", "--interface", "no_slip", "--history", "pressed"],
      "--history: 'pressed' must be one of loading, adhesive"),
     (DUGDALE + ["--tabor", "1", "--history", "loading"], "--history: loading given with "
-     "--interface frictionless: a frictionless path does not depend on how its contact was "
-     "formed"),
+     "--interface frictionless: a frictionless path has the law act from the first touch "
+     "(the choice is for no_slip only)"),
     (["--history", "adhesive"], "--history: adhesive given with --adhesion energy: a cohesive "
                                 "contact history needs --adhesion dugdale"),
 ]

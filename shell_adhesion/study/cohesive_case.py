@@ -183,8 +183,9 @@ def cohesive_input(R_mm, t_mm, h_mm, C10_MPa, gamma_J_m2, sigma0_MPa=None, tabor
                          f"(elements across the cohesive zone)")
     if inp.interface != "no_slip":
         for name, value, why in (("beta", beta, "the mixed-mode law is for no_slip only"),
-                                 ("history", history, "a frictionless path does not depend "
-                                                      "on how its contact was formed")):
+                                 ("history", history, "a frictionless path has the law "
+                                                      "act from the first touch (the "
+                                                      "choice is for no_slip only)")):
             if value is not None:
                 shown = f"{value:g}" if isinstance(value, (int, float)) else value
                 raise InputError(f"{n[name]}: {shown} given with {n['interface']} "

@@ -101,8 +101,8 @@ def run(ns) -> int:
     """`snap`: check everything, trace, report; 0 done, 1 the path stopped short."""
     if ns.gamma is not None:
         raise InputError(f"--gamma: {ns.gamma} is not an input of snap: it presses without "
-                         "adhesion (gamma = 0); `case` answers adhesion where the contact "
-                         "stays a disc")
+                         "adhesion (gamma = 0); `case --adhesion dugdale --interface "
+                         "frictionless` follows an adhesive shell from its first touch")
     numbers = {k: _number(FLAGS[k], getattr(ns, a), u) for k, a, u in (
         ("R_mm", "R", "mm"), ("t_mm", "t", "mm"), ("h_mm", "h", "mm"),
         ("C10_MPa", "C10", "MPa"), ("delta_max_mm", "delta_max", "mm"),

@@ -5,7 +5,8 @@ Inputs in the user's units: R, t, h, delta_max and unload_to in mm, C10 in MPa, 
 ambient pressure in kPa.  Outputs the same: delta in mm (> 0 approach), P in N (> 0
 compression), radii in mm, the pocket's volume in mm^3 and its gauge pressure in kPa
 (> 0 pushes the shell off the plane).  Frictionless or sticking contact, no adhesion
-(gamma = 0): the energy method's relaxations from ring states are not built.
+(gamma = 0): adhesion switched on after the snap pulls the dimple flat
+(docs/thin-shells.md).
 """
 from dataclasses import dataclass
 import dataclasses

@@ -270,9 +270,7 @@ def csv_text(result: SnapResult) -> str:
 def plot_snap(result: SnapResult, path):
     """P against delta (loading and unloading, the jumps marked) and, with a sealed
     pocket, its gauge pressure against delta; written to `path` (png, pdf or svg)."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure
 
     from shell_adhesion.atomic import atomic_path
 
@@ -282,7 +280,8 @@ def plot_snap(result: SnapResult, path):
     sealed = np.array([s["sealed"] for s in rows])
     unload = np.array([s["branch"] == "unloading" for s in rows])
     pocket = result.pocket()
-    fig, axes = plt.subplots(1, 2 if pocket else 1, figsize=(10 if pocket else 5.5, 4))
+    fig = Figure(figsize=(10 if pocket else 5.5, 4), layout="constrained")
+    axes = fig.subplots(1, 2 if pocket else 1)
     ax = axes[0] if pocket else axes
     ax.plot(D[~unload], P[~unload], "C0-", label="loading (arc length through the snap)")
     if unload.any():
@@ -306,7 +305,5 @@ def plot_snap(result: SnapResult, path):
         bx.set_xlabel("rim approach δ [mm]")
         bx.set_ylabel("pocket gauge pressure [kPa]")
         bx.set_title("sealed pocket", fontsize=9)
-    fig.tight_layout()
     with atomic_path(path) as tmp:
         fig.savefig(tmp, format=str(path).rsplit(".", 1)[-1].lower(), dpi=120)
-    plt.close(fig)

@@ -16,8 +16,6 @@ Run: python benchmarks/snap_adhesion.py [--t 0.02] [--mesh coarse] [--delta-max 
 import argparse
 import time
 
-import numpy as np
-
 from shell_adhesion.solver import arclength
 from shell_adhesion.solver import maugis_dugdale as md
 from shell_adhesion.solver.cohesive import CohesiveLaw, Interface
@@ -78,10 +76,7 @@ def main(argv=None):
     except ValueError as err:
         print(f"no pull-off: {err}")
     if a.history == "turn" and path.turn > 0:
-        W, U, Pi, E = path.work(), path.array("U"), path.array("Pi"), path.array("E_gas")
-        J = np.concatenate([[0.0], np.cumsum(path.array("anchor_jump"))[:-1]])
-        print(f"energy: max |W - U - Pi - E_gas + J| / max U = "
-              f"{np.abs(W - U - Pi - E + J).max() / U.max():.2e}")
+        print(f"energy: max |W - U - Pi - E_gas + J| / max U = {path.energy_miss():.2e}")
     print(f"wall {wall:.1f} s")
 
 

@@ -38,10 +38,10 @@ from shell_adhesion.errors import ConvergenceError, InputError, MaterialLimitErr
 from shell_adhesion.solver import INTERFACES
 from shell_adhesion.study import case as case_api
 from shell_adhesion.study import map_commands, snap_commands
+from shell_adhesion.study.flags import FIGURE_FORMATS, check_output, number as _number
 from shell_adhesion.study.case_input import MESHES, case_input
 from shell_adhesion.study.cohesive_case import ADHESIONS
 
-FIGURE_FORMATS = ("png", "pdf", "svg")
 HARD_EXIT_S = 45.0      # a run still ending this long after Ctrl-C is ended at once
 # the flag of each input of `case` (study.case_input.case_input names the fields this way)
 CASE_FLAGS = dict(R_mm="--R", t_mm="--t", h_mm="--h", C10_MPa="--C10",
@@ -117,14 +117,6 @@ class _OneDash(argparse.Action):
         parser.error(f"{given}: not an option (the flag is {right}, two dashes"
                      + (f", e.g. {right} {values}" if values is not None else "")
                      + "; help is --help)")
-
-
-def _number(flag, text, unit):
-    """A flag's text as a float (finite or not: the rules say which values are fine)."""
-    try:
-        return float(text)
-    except (TypeError, ValueError):
-        raise InputError(f"{flag}: {text!r} must be a number ({unit})") from None
 
 
 def _solid(ns) -> dict:
@@ -237,7 +229,7 @@ def _run_fit(ns):
     from shell_adhesion.study import fit as fit_api
 
     if ns.plot is not None:
-        _check_figure_path(ns.plot)
+        check_output("--plot", ns.plot, FIGURE_FORMATS)
     inp = fit_api.fit_input(_number("--R", ns.R, "mm"), _number("--t", ns.t, "mm"),
                             _number("--h", ns.h, "mm"), ns.curve,
                             None if ns.pull_off_N is None
@@ -252,15 +244,6 @@ def _run_fit(ns):
     else:
         _print_fit(out)
     return 0
-
-
-def _check_figure_path(path):
-    out = Path(path)
-    if out.suffix.lstrip(".").lower() not in FIGURE_FORMATS:
-        raise InputError(f"--plot: {path}: the file name must end in "
-                         f"{', '.join('.' + f for f in FIGURE_FORMATS)}")
-    if not out.parent.is_dir():
-        raise InputError(f"--plot: {path}: the folder {out.parent} does not exist")
 
 
 def _print_fit(out):

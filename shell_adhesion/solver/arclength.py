@@ -644,18 +644,26 @@ def pull_off(path: ArcPath) -> CohesivePullOff:
     s = path.states[path.turn:]
     D = np.array([q.delta for q in s])
     P = np.array([q.P for q in s])
-    i = int(np.argmin(P))
+    i, d_star, P_star = least_P(D, P)
     j = next((k for k in range(max(i, 1), len(D) - 1) if D[k] <= D[k - 1] and D[k] < D[k + 1]),
              None)
-    if i in (0, len(s) - 1):
-        raise ValueError("the retraction does not reach its least P")
-    d_star, P_star = _vertex(D[i - 1:i + 2], P[i - 1:i + 2])
     if j is None:       # no fold in delta (DMT-like): fixed grips separate smoothly
         dagger = (np.nan,) * 4
     else:
         P_dag, d_dag = _vertex(P[j - 1:j + 2], D[j - 1:j + 2])
         dagger = (P_dag, d_dag, *_between(s, P, j, P_dag))
     return CohesivePullOff(P_star, d_star, *_between(s, D, i, d_star), *dagger)
+
+
+def least_P(D, P) -> tuple:
+    """(i, delta*, P*) of a retraction sampled at (D, P) from its turn: the least sampled
+    P at i, and the vertex of the parabola P(delta) through it and its two neighbours.
+    ValueError where the least P is at either end (not reached)."""
+    i = int(np.argmin(P))
+    if i in (0, len(P) - 1):
+        raise ValueError("the retraction does not reach its least P")
+    d_star, P_star = _vertex(D[i - 1:i + 2], P[i - 1:i + 2])
+    return i, d_star, P_star
 
 
 def _vertex(u, v):

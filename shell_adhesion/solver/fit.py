@@ -364,10 +364,7 @@ def fit_loading(ps: PathSet, x, p, start) -> tuple:
 
 def _fit_loading(ps: PathSet, x, p, C10_0, x0_0):
     """The least-squares fit of (C10, x0) to loading points."""
-    def resid(v):
-        return v[0] * loading_F(ps, x - v[1]) - p
-    return least_squares(resid, [C10_0, x0_0], x_scale="jac",
-                         bounds=([0.0, -np.inf], [np.inf, np.inf]))
+    return _fit_loading_baseline(ps, x, p, (C10_0, x0_0))
 
 
 def gamma_of_P_star(ps: PathSet, C10: float, p_star: float, span: tuple = None) -> float:
@@ -419,7 +416,7 @@ def fit_curve(ps: PathSet, x, p, p_pull_off=None, hertz=None, split: Split = Non
             _check_depth(ps, x.max() - load.x[1])
             return replace(_pull_off_estimate(ps, load, p_pull_off, used), split=parts)
         span = span or gamma_range(ps)
-        stage1 = _fit_loading_baseline(ps, xl, pl, load.x, nb)
+        stage1 = _fit_loading_baseline(ps, xl, pl, load.x, nb) if nb else load
         C10, x0 = stage1.x[:2]
         corr = _baseline_fn(stage1.x[2:])
         path = turn_path(ps, x.max() - x0)

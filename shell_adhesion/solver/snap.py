@@ -68,7 +68,7 @@ import numpy as np
 
 from shell_adhesion.errors import ConvergenceError, InputError
 
-from .arclength import (SWITCH_OFF, ArcSettings, _Continuation, _switch_on, _vertex,
+from .arclength import (SWITCH_OFF, ArcSettings, _Continuation, _switch_on, least_P,
                         work as arc_work)
 from .cohesive import CohesiveLaw, Interface, penalty, point_anchors_at, scaled
 from .contact import INTERFACES, constraints, gaps, rim_load
@@ -198,7 +198,11 @@ class SnapState:
     @property
     def contact(self) -> str:
         """The contact set as radii / R, e.g. 'disc 0-0.21' or 'ring 0.30-0.34'."""
-        return " + ".join(("disc" if r0 == 0.0 else "ring") + f" {r0:.4g}-{r1:.4g}"
+        return self.contact_in(1.0)
+
+    def contact_in(self, R: float) -> str:
+        """The contact set with its radii times R (e.g. R in mm: radii in mm)."""
+        return " + ".join(("disc" if r0 == 0.0 else "ring") + f" {R * r0:.4g}-{R * r1:.4g}"
                           for r0, r1 in self.radii) or "none"
 
 
@@ -263,6 +267,14 @@ class SnapPath:
             W[a:b] = done + part
             done = W[b - 1]
         return W
+
+    def energy_miss(self) -> float:
+        """The energy balance: max |W - U - Pi - E_gas + J| / max U along the path, W the
+        work of P, J the energy added at fixed delta before each state (anchor_jump)."""
+        U = self.array("U")
+        J = np.concatenate([[0.0], np.cumsum(self.array("anchor_jump"))[:-1]])
+        miss = self.work() - U - self.array("Pi") - self.array("E_gas") + J
+        return float(np.abs(miss).max() / max(U.max(), 1e-300))
 
 
 def contact_set(iface: Interface, x) -> tuple:
@@ -477,12 +489,7 @@ def adhesive_pull_off(path: SnapPath) -> tuple:
     P* < 0 a tensile pull-off).  ValueError where the unloading does not reach it."""
     if path.turn < 0:
         raise ValueError("the path did not turn: no unloading")
-    D = path.array("delta")[path.turn:]
-    P = path.array("P")[path.turn:]
-    i = int(np.argmin(P))
-    if i in (0, len(P) - 1):
-        raise ValueError("the unloading does not reach its least P")
-    d_star, P_star = _vertex(D[i - 1:i + 2], P[i - 1:i + 2])
+    _, d_star, P_star = least_P(path.array("delta")[path.turn:], path.array("P")[path.turn:])
     return P_star, d_star
 
 

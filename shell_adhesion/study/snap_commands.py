@@ -13,7 +13,6 @@ story and the energy balance.  A path that stops short prints what it reached an
 """
 import argparse
 import math
-from pathlib import Path
 import sys
 
 from shell_adhesion.atomic import write_text_atomic
@@ -22,6 +21,7 @@ from shell_adhesion.solver.contact import INTERFACES
 from shell_adhesion.solver.pocket import MODES as POCKETS
 
 from . import thin_shell
+from .flags import FIGURE_FORMATS, check_output, number
 from .progress import bar
 
 FLAGS = dict(R_mm="--R", t_mm="--t", h_mm="--h", C10_MPa="--C10", delta_max_mm="--delta-max",
@@ -29,7 +29,6 @@ FLAGS = dict(R_mm="--R", t_mm="--t", h_mm="--h", C10_MPa="--C10", delta_max_mm="
              p_atm_kPa="--p-atm-kPa", seal="--seal", interface="--interface", stick="--stick",
              mesh="--mesh")
 ROWS = 30              # about this many states in the printed table
-FIGURE_FORMATS = ("png", "pdf", "svg")
 
 
 def add_parser(sub, one_dash):
@@ -79,31 +78,14 @@ def add_parser(sub, one_dash):
                    help="write a figure of P against delta (and the pocket's pressure)")
 
 
-def _number(flag, text, unit):
-    if text is None:
-        return None
-    try:
-        return float(text)
-    except ValueError:
-        raise InputError(f"{flag}: {text!r} must be a number ({unit})") from None
-
-
-def _check_out(flag, path, formats=None):
-    out = Path(path)
-    if formats and out.suffix.lstrip(".").lower() not in formats:
-        raise InputError(f"{flag}: {path}: the file name must end in "
-                         f"{', '.join('.' + f for f in formats)}")
-    if not out.parent.is_dir():
-        raise InputError(f"{flag}: {path}: the folder {out.parent} does not exist")
-
-
 def run(ns) -> int:
     """`snap`: check everything, trace, report; 0 done, 1 the path stopped short."""
     if ns.gamma is not None:
         raise InputError(f"--gamma: {ns.gamma} is not an input of snap: it presses without "
                          "adhesion (gamma = 0); `case --adhesion dugdale --interface "
                          "frictionless` follows an adhesive shell from its first touch")
-    numbers = {k: _number(FLAGS[k], getattr(ns, a), u) for k, a, u in (
+    numbers = {k: None if getattr(ns, a) is None else number(FLAGS[k], getattr(ns, a), u)
+               for k, a, u in (
         ("R_mm", "R", "mm"), ("t_mm", "t", "mm"), ("h_mm", "h", "mm"),
         ("C10_MPa", "C10", "MPa"), ("delta_max_mm", "delta_max", "mm"),
         ("unload_to_mm", "unload_to", "mm"), ("gas_exponent", "gas_exponent", "1"),
@@ -114,9 +96,9 @@ def run(ns) -> int:
                                 interface=ns.interface, stick=ns.stick, mesh=ns.mesh,
                                 names=FLAGS)
     if ns.csv is not None:
-        _check_out("--csv", ns.csv)
+        check_output("--csv", ns.csv)
     if ns.plot is not None:
-        _check_out("--plot", ns.plot, FIGURE_FORMATS)
+        check_output("--plot", ns.plot, FIGURE_FORMATS)
     result = _traced(inp)
     if ns.csv is not None:
         write_text_atomic(ns.csv, thin_shell.csv_text(result))

@@ -151,37 +151,29 @@ class SnapResult:
     @property
     def energy_miss(self) -> float:
         """The energy balance: the largest miss of (work of P) - (strain + contact penalty +
-        gas energy) along the path, over the largest strain energy."""
-        p = self.path
-        U = p.array("U")
-        jumps = np.concatenate([[0.0], np.cumsum(p.array("anchor_jump"))[:-1]])
-        miss = p.work() - U - p.array("Pi") - p.array("E_gas") + jumps
-        return float(np.abs(miss).max() / max(U.max(), 1e-300))
+        gas energy) along the path, over the largest strain energy (SnapPath.energy_miss)."""
+        return self.path.energy_miss()
 
-    def contact_mm(self, s) -> str:
-        """A state's contact set with radii in mm, e.g. 'disc 0-4.2 + ring 6.1-7.0'."""
-        return " + ".join(("disc" if r0 == 0.0 else "ring")
-                          + f" {self.mm(r0):.4g}-{self.mm(r1):.4g}"
-                          for r0, r1 in s.radii) or "none"
+    def state(self, i: int) -> dict:
+        """State i: delta_mm, P_N, contact (radii in mm), apex_mm (height of the apex
+        above the plane), V_mm3, p_kPa, sealed, branch ('loading' or 'unloading')."""
+        s = self.path.states[i]
+        return dict(state=i, delta_mm=self.mm(s.delta), P_N=self.N(s.P) + 0.0,
+                    contact=s.contact_in(self.input.R_mm), apex_mm=self.mm(s.apex_gap),
+                    V_mm3=self.input.R_mm ** 3 * s.V if s.sealed else math.nan,
+                    p_kPa=self.kPa(s.p), sealed=bool(s.sealed),
+                    branch="unloading" if 0 <= self.path.turn < i else "loading")
 
     def states(self) -> list:
-        """One dict per state: delta_mm, P_N, contact, apex_mm (height of the apex above
-        the plane), V_mm3, p_kPa, sealed, branch ('loading' or 'unloading')."""
-        out = []
-        for i, s in enumerate(self.path.states):
-            out.append(dict(state=i, delta_mm=self.mm(s.delta), P_N=self.N(s.P) + 0.0,
-                            contact=self.contact_mm(s), apex_mm=self.mm(s.apex_gap),
-                            V_mm3=self.input.R_mm ** 3 * s.V if s.sealed else math.nan,
-                            p_kPa=self.kPa(s.p), sealed=bool(s.sealed),
-                            branch="unloading" if 0 <= self.path.turn < i else "loading"))
-        return out
+        """Every state as `state` gives it."""
+        return [self.state(i) for i in range(len(self.path.states))]
 
     def jumps(self) -> list:
         """The displacement-controlled jumps: delta_mm, P_N from and to, contact sets."""
         return [dict(delta_mm=self.mm(j.delta), P_from_N=self.N(j.P_from),
                      P_to_N=self.N(j.P_to),
-                     contact_from=self.contact_mm(self.path.states[j.i_from]),
-                     contact_to=self.contact_mm(self.path.states[j.i_to]))
+                     contact_from=self.path.states[j.i_from].contact_in(self.input.R_mm),
+                     contact_to=self.path.states[j.i_to].contact_in(self.input.R_mm))
                 for j in self.path.jumps()]
 
     def first_ring(self):
@@ -189,7 +181,7 @@ class SnapResult:
         more than SnapSettings.seal_lift thicknesses: the soft contact lifts a flattened
         centre by about 1e-3 t long before), or None."""
         i = self.path.first_ring(SnapSettings.seal_lift * self.input.t_mm / self.input.R_mm)
-        return None if i is None else self.states()[i]
+        return None if i is None else self.state(i)
 
     def pocket(self):
         """With a sealed pocket: where it sealed and opened, the pull-off it gave (the

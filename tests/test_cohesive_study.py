@@ -223,9 +223,9 @@ def test_ctrl_c_keeps_the_finished_answers_and_a_rerun_solves_the_rest(tmp_path)
     from shell_adhesion.catalogue import list_entries
 
     from conftest import ENV, REPO
-    # one worker runs the tasks in submission order: lambda 0.3 (2 s) before lambda 2 (15 s)
+    # one worker runs the tasks in submission order: lambda 0.3 (2 s) before lambda 1
     study = STUDY.replace("grid:\n  C10_MPa: [0.3, 0.6]\n  gamma_J_m2: [30, 60]\n  tabor: [0.3, 1]\n",
-                          "grid:\n  C10_MPa: [0.3]\n  gamma_J_m2: [30]\n  tabor: [0.3, 2]\n")
+                          "grid:\n  C10_MPa: [0.3]\n  gamma_J_m2: [30]\n  tabor: [0.3, 1]\n")
     (tmp_path / "ctrl_c.yaml").write_text(study)
     cat, out = tmp_path / "cat", tmp_path / "results"
 

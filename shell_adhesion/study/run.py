@@ -22,6 +22,7 @@ import logging
 import os
 from pathlib import Path
 import signal
+import socket
 import tempfile
 import threading
 import time
@@ -214,6 +215,7 @@ def _connect_external(scheduler):
     RunInputError if none answers within CONNECT_TIMEOUT_S."""
     import dask
     from distributed import Client
+    _refused(scheduler)
     try:
         # this side's message log bounded as in _local_cluster (the scheduler's is its own)
         with dask.config.set({"distributed.admin.low-level-log-length": LOW_LEVEL_LOG}):
@@ -227,6 +229,24 @@ def _connect_external(scheduler):
                          f"{CONNECT_TIMEOUT_S:g} s ({why}); it must be the address or "
                          "scheduler file of a running dask scheduler") from None
 
+
+
+def _refused(scheduler):
+    """RunInputError at once if `scheduler` is a tcp address whose port refuses a
+    connection (nothing listens there: dask's Client would retry for CONNECT_TIMEOUT_S)."""
+    if Path(scheduler).is_file():
+        return
+    host, _, port = str(scheduler).removeprefix("tcp://").rpartition(":")
+    if not (host and port.isdigit()):
+        return                                  # not host:port: dask says what is wrong
+    try:
+        socket.create_connection((host.strip("[]"), int(port)), CONNECT_TIMEOUT_S).close()
+    except ConnectionRefusedError:
+        raise RunInputError("scheduler", f"{scheduler!r}: nothing listens at that address "
+                            "(connection refused); it must be the address or scheduler "
+                            "file of a running dask scheduler") from None
+    except OSError:
+        return                                  # unreachable, slow, ...: dask's timeout
 
 
 @contextmanager

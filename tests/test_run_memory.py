@@ -63,8 +63,8 @@ def test_the_driver_opens_a_bounded_number_of_shells_at_once(tmp_path, monkeypat
         return store(self, key, *args, **kwargs)
     monkeypatch.setattr(distributed.Client, "submit", submitting)
     monkeypatch.setattr(Catalogue, "store", storing)
-    # three thick shells: one more than the window holds (the thin ones cost 2x the time)
-    study = dict(STUDY, name="window", base=dict(STUDY["base"], t_over_R=0.3),
+    # three thick shells: one more than the window holds (a small gamma: few paths each)
+    study = dict(STUDY, name="window", base=dict(STUDY["base"], t_over_R=0.3, gamma_J_m2=60),
                  sweeps=dict(t_over_R=[0.3, 0.4, 0.5]))
     outcome = run_module.execute(study, out=tmp_path / "out", catalogue=tmp_path / "cat",
                                  progress=False, workers=1)

@@ -7,11 +7,12 @@ state, delta / t, P / (C10 R^2), P over Reissner's 16 C10 t^2 delta / R, the con
 displacement-controlled jumps, the first ring, the log-slope d ln P / d ln delta over
 5 t to 10 t on the last branch, the energy balance and the totals.
 Run: python benchmarks/snap.py [--t 0.02] [--mesh coarse] [--delta-max 10] [--every 20]
-[--stiffness 1e4] [--onset 1e-4] [--tol 1e-9]
+[--stiffness 1e4] [--onset 1e-4] [--tol 1e-9] [--jump-push 0.01] [--ds-max 0.01]
 [--figure docs/figures/thin_shell_snap.png [--sharp 3e-6]]
 (--delta-max in thicknesses t; the contact penalty's stiffness in C10 / R and onset in R,
-solver.snap.SnapSettings; --sharp: the loading with that onset / R drawn too, to where
-its continuation stops)
+solver.snap.SnapSettings; --jump-push in t: where the continuation stalls, the jump by
+descent, 0 to end the path there instead; --ds-max the largest arc step / R; --sharp: the
+loading with that onset / R drawn too, with its jump)
 """
 import argparse
 import dataclasses
@@ -36,11 +37,16 @@ def main(argv=None):
                     help="with --figure: also draw the loading with this onset / R")
     ap.add_argument("--tol", type=float, default=SnapSettings.tol,
                     help="force residual relative to the largest reaction")
+    ap.add_argument("--jump-push", type=float, default=SnapSettings.jump_push,
+                    help="where the continuation stalls: push on by this many t and settle "
+                         "(0: the path ends there)")
+    ap.add_argument("--ds-max", type=float, default=SnapSettings.ds_max,
+                    help="largest arc step / R")
     a = ap.parse_args(argv)
     T = a.t
     t0 = time.perf_counter()
     settings = dataclasses.replace(SnapSettings(), stiffness=a.stiffness, onset=a.onset,
-                                   tol=a.tol)
+                                   tol=a.tol, jump_push=a.jump_push, ds_max=a.ds_max)
     d, path = trace_shell(T, 1.0, a.mesh, a.delta_max * T, settings=settings)
     wall = time.perf_counter() - t0
     print(f"t/R = {T:g}, h/R = 1, {a.mesh} mesh, {d.ndof} dofs, penalty {a.stiffness:g} "
@@ -117,14 +123,23 @@ def figure(d, path, T, out, onset, sharp=None, sharp_onset=None):
     else:
         ax.plot(D, P, "C0-", label="loading")
     if sharp is not None:
-        ax.plot(sharp.array("delta") / T, sharp.array("P"), color="0.5", lw=1,
-                label=f"contact onset {sharp_onset:g} R: to its loss of stability")
+        Ds, Ps = sharp.array("delta") / T, sharp.array("P")
+        landed = [j for j in sharp.jumps() if sharp.states[j.i_to].landed]
+        cut = landed[0].i_to if landed else len(Ds)
+        ax.plot(Ds[:cut], Ps[:cut], color="0.5", lw=1,
+                label=f"contact onset {sharp_onset:g} R" + (
+                    ": jumps where it loses stability" if landed else ""))
+        if landed:
+            j = landed[0]
+            ax.plot(Ds[cut:], Ps[cut:], color="0.5", lw=1)
+            ax.annotate("", (j.delta / T, j.P_to), (j.delta / T, j.P_from),
+                        arrowprops=dict(arrowstyle="->", color="0.5"))
     dd = np.linspace(0, 1.2 * T, 20)
     ax.plot(dd / T, 16 * T * T * dd, "k:", label="Reissner 16 C10 t² δ / R")
     ax.set_xlabel("δ / t")
     ax.set_ylabel("P / (C10 R²)")
     ax.set_title(f"t/R = {T:g}, h/R = 1, frictionless, no adhesion")
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="lower right")
     cm = d.capmesh
     order = np.argsort(cm.nodes[0][cm.outer])
     nodes = cm.outer[order]

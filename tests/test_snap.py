@@ -14,11 +14,13 @@ energy 3.6e-5 (benchmarks/snap.py).
 Where the snap falls depends on the contact's regularisation (solver.snap.SnapSettings.
 onset): the traced jump comes early; with a sharp contact the loading stops at its loss
 of stability, 6.33 t (two `slow` tests, docs/thin-shells.md)."""
+import dataclasses
+
 import numpy as np
 import pytest
 
 from shell_adhesion.errors import InputError
-from shell_adhesion.solver.snap import log_slope, trace_shell
+from shell_adhesion.solver.snap import SnapSettings, log_slope, trace_shell
 
 REISSNER = 0.15     # the brief's band around 16 C10 t^2 delta / R, delta <= t / 2
 ENERGY = 1e-4       # |work of P - U - Pi| / max U along the path
@@ -152,10 +154,67 @@ def test_contact_set_of_a_ring_against_the_closed_form():
     assert edges[0] > 0
 
 
-def _onset(onset, stiffness=1e4):
-    import dataclasses
-    from shell_adhesion.solver.snap import SnapSettings
-    return dataclasses.replace(SnapSettings(), onset=onset, stiffness=stiffness)
+def _onset(onset, stiffness=1e4, jump_push=SnapSettings().jump_push):
+    return dataclasses.replace(SnapSettings(), onset=onset, stiffness=stiffness,
+                               jump_push=jump_push)
+
+
+def _sharp_jump(mesh, depth, push=SnapSettings().jump_push):
+    """The loading of t/R 0.02 with a sharp contact (onset 3e-6 R) to depth t, its one
+    jump and the energy the jump dissipated (C10 R^3)."""
+    T = 0.02
+    _, path = trace_shell(T, 1.0, mesh, depth * T, settings=_onset(3e-6, jump_push=push))
+    jump, = path.jumps()
+    return path, jump, -path.states[jump.i_from].anchor_jump
+
+
+def test_a_sharp_contact_jumps_where_it_loses_stability():
+    """With a sharp contact the continuation cannot pass the loss of stability at 6.33 t
+    (the centre lifts while delta and P stand still; next test).  There the loading jumps
+    as a displacement-controlled test does (`snap._jump`): the rim pushed on by 0.01 t, the
+    shell settles by damped descent and is brought back to the same delta on the branch it
+    landed on.  t/R 0.02, coarser mesh, onset 3e-6 R, to 6.4 t (4 s).  Measured: at
+    6.3258 t P falls from 1.5768e-3 to 6.216e-4 C10 R^2 (0.394 of it), the contact from
+    two rings (0.124-0.238 and 0.399-0.448 R) to one at 0.440-0.444 R around a dimple;
+    the jump dissipates 3.337e-5 C10 R^3 (0.41 of the largest strain energy) and the work
+    of P balances the strain and penalty energies less that within 8.2e-6 of max U.
+    Without the jump (jump_push 0) the path ends there, as before."""
+    T = 0.02
+    path, jump, lost = _sharp_jump("coarser", 6.4)
+    assert path.ended_by == "" and path.states[-1].delta >= 6.4 * T
+    landed, before = path.states[jump.i_to], path.states[jump.i_from]
+    assert landed.landed and jump.i_to == jump.i_from + 1 and landed.delta == before.delta
+    assert jump.delta / T == pytest.approx(6.325, abs=0.01)
+    assert 0.35 < jump.P_to / jump.P_from < 0.45
+    # from two rings around a hovering centre to one ring around a dimple
+    assert len(before.radii) == 2 and abs(before.apex_gap) < 1e-3 * T
+    assert len(landed.radii) == 1 and landed.radii[0][0] > 0.4 and landed.apex_gap > 5 * T
+    U = path.array("U")
+    assert lost == pytest.approx(before.U + before.Pi - landed.U - landed.Pi, rel=1e-12)
+    assert 0.3 * U.max() < lost < 0.5 * U.max()
+    assert path.energy_miss() < 2e-5
+    _, stopped = trace_shell(T, 1.0, "coarser", 6.4 * T, settings=_onset(3e-6, jump_push=0.0))
+    assert stopped.ended_by.startswith("step below") and not stopped.jumps()
+    assert stopped.states[-1].delta == pytest.approx(before.delta, abs=1e-4 * T)
+
+
+@pytest.mark.slow
+def test_the_sharp_jump_lands_on_the_same_state_whatever_the_push_and_the_mesh():
+    """The state the jump lands on does not depend on how far the rim is pushed on before
+    the shell settles (0.01 t or 0.001 t: the same P and contact to 1e-6), and holds on
+    the coarse mesh (two layers through the shell against one): measured, coarser 6.3258 t,
+    P 1.5768e-3 -> 6.216e-4, ring 0.440-0.444 R; coarse 6.3368 t, 1.5772e-3 -> 6.270e-4,
+    ring 0.4395-0.4457 R (to 8 t with ds_max 0.001: energy balance 3.4e-8).  About a
+    minute."""
+    T = 0.02
+    _, far, _ = _sharp_jump("coarser", 6.4, push=0.01)
+    _, near, _ = _sharp_jump("coarser", 6.4, push=0.001)
+    assert near.P_to == pytest.approx(far.P_to, rel=1e-6) and near.contact_to == far.contact_to
+    path, fine, lost = _sharp_jump("coarse", 6.4)
+    print(far, fine, lost)
+    assert fine.delta / T == pytest.approx(far.delta / T, abs=0.015)
+    assert fine.P_to == pytest.approx(far.P_to, rel=0.015)
+    assert fine.P_from == pytest.approx(far.P_from, rel=0.005)
 
 
 @pytest.mark.slow
@@ -189,7 +248,8 @@ def test_a_sharp_contact_loses_stability_at_the_same_delta_on_refinement():
     """With a sharp contact (onset 1e-5 R and below) the loading stops at a bifurcation:
     delta and P stand still while the flattened centre lifts off (the inner edge of the
     contact moving from the axis outward), and the continuation cannot follow the branch
-    beyond (its steps fall below ds_min).  Where it stops holds across refinements of the
+    beyond (its steps fall below ds_min; `SnapSettings.jump_push` 0: no jump from there).
+    Where it stops holds across refinements of the
     contact and of the mesh: the converged snap.  Measured (delta / t), stiffness 1e4
     C10/R unless stated: coarser 6.2702 (onset 1e-5 R; and 1e5 C10/R from 1e-4 R: the
     penetration stays within the onset, so only their ratio counts), 6.3253 (3e-6 R),
@@ -202,7 +262,7 @@ def test_a_sharp_contact_loses_stability_at_the_same_delta_on_refinement():
                            ("coarser", 1e-6, 1e5), ("coarse", 3e-6, 1e4),
                            ("default", 3e-6, 1e4)):
         depth = 6.6 if mesh == "default" else 8
-        _, path = trace_shell(T, 1.0, mesh, depth * T, settings=_onset(onset, k))
+        _, path = trace_shell(T, 1.0, mesh, depth * T, settings=_onset(onset, k, 0.0))
         assert path.ended_by.startswith("step below"), path.ended_by
         last = path.states[-1]
         # the centre has lifted: the contact is rings, the axis off the plane by less

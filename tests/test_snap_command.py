@@ -37,6 +37,27 @@ def test_bad_input_is_one_line_and_exit_2(args, says, capsys, tmp_path, monkeypa
     assert list(tmp_path.iterdir()) == []
 
 
+def test_a_sharp_contact_jumps_where_it_loses_stability_in_newtons(capsys):
+    """`--contact sharp` (onset 3e-6 R): the loading of t/R 0.02 jumps at 6.33 t (2.53 mm
+    for t 0.4 mm), from two rings to one around a dimple, and says how the jump was found;
+    P in newtons is the solver's C10 R^2 times 0.3 MPa x 400 mm^2 (solver: test_snap.py's
+    sharp jump, 1.5768e-3 -> 6.216e-4 on its own mesh).  Coarser mesh, 6.5 t (about 7 s)."""
+    assert main(["snap", *SHELL, "--t", "0.4", "--delta-max", "2.6", "--mesh", "coarser",
+                 "--contact", "sharp", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["input"]["contact"] == "sharp"
+    jump, = out["jumps"]
+    assert jump["delta_mm"] / 0.4 == pytest.approx(6.33, abs=0.02)
+    assert jump["P_from_N"] == pytest.approx(1.5768e-3 * 120, rel=0.01)
+    assert 0.35 < jump["P_to_N"] / jump["P_from_N"] < 0.45
+    assert jump["contact_from"].count("ring") == 2 and jump["contact_to"].count("ring") == 1
+    assert out["energy_balance"] < 1e-4
+    assert main(["snap", *SHELL, "--t", "0.4", "--delta-max", "2.6", "--mesh", "coarser",
+                 "--contact", "sharp"]) == 0
+    text = capsys.readouterr().out
+    assert "sharp contact" in text and "settles by damped descent" in text
+
+
 def test_flattening_follows_reissner_in_newtons_and_scales_as_C10_R2(capsys, tmp_path):
     """From 0.05 t (below it the contact penalty's onset, 1e-4 R, is a sizeable part of
     delta) to t/2 the load is within 15 % of Reissner's 16 C10 t^2 delta / R, with every

@@ -34,8 +34,14 @@ it.  t/R 0.02, h/R 1, coarser mesh: with an onset of 1e-4, 7e-5, 5e-5 R the trac
 is at 4.37, 4.61, 4.89 t (at 1e-4 R: 4.83 t on the coarse mesh, 4.90 t on the default);
 with a sharp contact (1e-5, 3e-6, 1e-6 R) the loading stops at 6.27, 6.325, 6.331 t
 (3e-6 R: coarse 6.337, default 6.339 t), where delta and P stand still while the centre
-lifts, and the continuation cannot pass: the converged snap is there, about 6.33 t, and
-the jump traced with the default onset comes 24 % early on the coarse mesh.  Only
+lifts, and no arc step beyond converges: the converged snap is there, about 6.33 t, and
+the jump traced with the default onset comes 24 % early on the coarse mesh.  Where the
+loading stalls so, it jumps as a displacement-controlled test does (`_jump`,
+SnapSettings.jump_push): the rim pushed on a little, the shell let settle by damped
+descent, the state it settles in brought back to the same delta on its branch; the
+energy the jump dissipates is recorded (the state before's anchor_jump) and the path
+goes on (`SnapState.landed`; at t/R 0.02: P to 0.40 of its value, from two rings to one
+ring around a dimple, 41 % of the strain energy dissipated).  Only
 stiffness / onset counts (the penetration stays within the onset).  The
 branch after the jump hardly depends on it (Pogorelov slope 0.583 at all three onsets).
 
@@ -68,7 +74,7 @@ import numpy as np
 
 from shell_adhesion.errors import ConvergenceError, InputError
 
-from .arclength import (SWITCH_OFF, ArcSettings, _Continuation, _switch_on, least_P,
+from .arclength import (SWITCH_OFF, ArcSettings, _Continuation, _descend, _switch_on, least_P,
                         work as arc_work)
 from .cohesive import CohesiveLaw, Interface, penalty, point_anchors_at, scaled
 from .contact import INTERFACES, constraints, gaps, rim_load
@@ -153,6 +159,12 @@ class SnapSettings:
     stick_at_turn: bool = False  # interface no_slip: the contact sticks from the turn to
     #                            the unloading (frictionless before: press past the snap,
     #                            then grip), not from the first touch
+    jump_push: float = 0.01    # where the loading stops short (no step converges above
+    #                            ds_min: the sharp contact's loss of stability), the rim
+    #                            is pushed on by this many thicknesses and the shell let
+    #                            settle (`_jump`: a displacement-controlled jump); 0: the
+    #                            path ends there instead
+    jump_descent: int = 3000   # ... the damped descent's bound on steps
     onset: float = 1e-4        # ... and its onset / R: the contact force rises as the
     #                            square of the penetration over this depth.  The sharpest
     #                            the continuation passes the snap with (t/R 0.02; 4e-5
@@ -189,6 +201,9 @@ class SnapState:
     # Anchors change only where a point is off the plane, where the tangential penalty
     # and its derivatives vanish: 0 by construction, recorded to be checked
     anchor_jump: float = 0.0
+    # reached by a displacement-controlled jump from the state before, at its delta (the
+    # energy the jump dissipates is that state's anchor_jump, < 0)
+    landed: bool = False
 
     @property
     def ring(self) -> bool:
@@ -241,9 +256,12 @@ class SnapPath:
 
     def jumps(self) -> tuple:
         """The displacement-controlled jumps: one per fold at which delta turns back and
-        is passed again later on the path."""
+        is passed again later on the path, and one per state the loading landed on by a
+        jump where it could not go on (`SnapState.landed`)."""
         D, P = self.array("delta"), self.array("P")
-        out = []
+        out = [Jump(float(D[i - 1]), float(P[i - 1]), float(P[i]), self.states[i - 1].contact,
+                    self.states[i].contact, i - 1, i)
+               for i, s in enumerate(self.states) if s.landed]
         for i in range(1, len(D) - 1):
             if not (D[i] >= D[i - 1] and D[i] > D[i + 1]):
                 continue
@@ -253,7 +271,7 @@ class SnapPath:
             w = (D[i] - D[j - 1]) / (D[j] - D[j - 1])
             out.append(Jump(float(D[i]), float(P[i]), float((1 - w) * P[j - 1] + w * P[j]),
                             self.states[i].contact, self.states[j].contact, i, j))
-        return tuple(out)
+        return tuple(sorted(out, key=lambda jump: jump.i_from))
 
     def work(self) -> np.ndarray:
         """The work of P from the first state to each (integral of P d delta, C10 R^3),
@@ -320,7 +338,10 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
 
     Ends (`SnapPath.ended_by`) at delta_max or unload_to (""), where a sealed pocket opens
     ("pocket opened ..."), or when a step fails below settings.ds_min, or at
-    settings.max_states states.  `progress(state)` is called after each state if given.
+    settings.max_states states.  A loading (frictionless, no sealed pocket, no adhesion)
+    whose step fails below ds_min jumps instead (`_jump`, settings.jump_push > 0): the
+    state it lands on, at the same delta, follows with `landed` set, and the energy the
+    jump dissipated is the state before's anchor_jump.  `progress(state)` is called after each state if given.
 
     `interface` the tangential contact (contact.INTERFACES): "frictionless", or
     "no_slip": a quadrature point in contact is held radially at its radius at the last
@@ -396,7 +417,26 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
                 break
             if ds < s.ds_min:
                 ended_by = f"step below {s.ds_min:g} at delta = {delta:.6g} R ({err})"
-                break
+                if not (s.jump_push > 0 and turn < 0 and beta is None and adhesion is None
+                        and (cn.d.cavity is None or not cn.d.cavity.sealed)
+                        and delta < delta_max):
+                    break
+                try:
+                    x, K, r, it = _jump(cn, c, x, delta, s.jump_push * d.capmesh.cap.t,
+                                        s.jump_descent)
+                except ConvergenceError as why:
+                    ended_by += f"; no jump from there: {why}"
+                    break
+                t = cn.tangent_at(K, c)
+                before = states[-1]
+                states.append(dataclasses.replace(_state(cn, x, delta, K, r, t, it, 0.0),
+                                                  landed=True))
+                states[-2] = dataclasses.replace(before, anchor_jump=before.anchor_jump + (
+                    states[-1].U + states[-1].Pi - before.U - before.Pi))
+                if progress is not None:
+                    progress(states[-1])
+                ds = s.ds_first
+                ended_by = f"state limit: {s.max_states} states"
             continue
         slope = None
         if cn.dot(*tn, *chord) < s.cos_min:
@@ -469,6 +509,26 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
         if it <= s.easy:
             ds *= s.grow
     return SnapPath(tuple(states), ended_by, _sum(timers), turn)
+
+
+def _jump(cn, c, x, delta, push, steps):
+    """The displacement-controlled jump from the state x at delta / R where the loading
+    cannot go on: the rim pushed on by `push` / R, the shell let settle there by damped
+    descent (`arclength._descend`, at most `steps` steps), and the state it settles in
+    brought back to delta on its own branch (Newton at fixed delta).  Returns (x, K, r,
+    iterations); ConvergenceError if it does not settle, finds no state at delta, or
+    settles back where it started (its energy not below the start's)."""
+    fixed = (np.zeros(cn.d.ndof), 1.0)
+    y = x.copy()
+    y[c.rimz] = -(delta + push)
+    y, n = _descend(cn, c, y, steps)
+    y, _, K, r, (full, chord) = cn.correct(c, y, delta + push, fixed, 0.0)
+    y[c.rimz] = -delta
+    y, _, K, r, (full2, chord2) = cn.correct(c, y, delta, fixed, 0.0)
+    energy = lambda z: strain_energy(cn.d, z) + cn.iface.energy(z)      # noqa: E731
+    if not energy(y) < energy(x):
+        raise ConvergenceError("the shell settled back where it was")
+    return y, K, r, n + full + chord + full2 + chord2
 
 
 def _adhere(cn, law, c, x, delta, arc):

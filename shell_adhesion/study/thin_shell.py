@@ -26,6 +26,12 @@ from shell_adhesion.solver.scaling import check_C10, check_finite, check_R, forc
 from shell_adhesion.solver.snap import SnapSettings, loading_cap, ring_arc, trace_loading
 
 MESHES = ("coarser", "coarse", "default")
+# the contact penalty's onset (solver.snap.SnapSettings): "soft", the default 1e-4 R, passes
+# the snap by the folds it makes (the jump comes early); "sharp", 3e-6 R, loses stability
+# where a sharp contact does (6.33 t at t/R 0.02) and jumps from there by descent, in arc
+# steps of at most SHARP_DS_MAX R (its kinks need them for the energy balance)
+CONTACTS = dict(soft=SnapSettings().onset, sharp=3e-6)
+SHARP_DS_MAX = 0.002
 SEALS = ("turn", "ring")           # the gas is trapped at the turn, or at the first ring
 STICKS = ("turn", "touch")         # no_slip: the contact sticks from the turn, or from
 #                                    the first touch (then the shell does not snap)
@@ -35,7 +41,7 @@ ENERGY_TOL = 1e-3                  # the energy balance a path is vouched for at
 API_NAMES = dict(R_mm="R_mm", t_mm="t_mm", h_mm="h_mm", C10_MPa="C10_MPa",
                  delta_max_mm="delta_max_mm", unload_to_mm="unload_to_mm", pocket="pocket",
                  gas_exponent="gas_exponent", p_atm_kPa="p_atm_kPa", seal="seal",
-                 interface="interface", stick="stick", mesh="mesh")
+                 interface="interface", stick="stick", mesh="mesh", contact="contact")
 
 
 @dataclass(frozen=True)
@@ -55,6 +61,7 @@ class SnapInput:
     interface: str
     stick: str
     mesh: str
+    contact: str = "soft"
 
     @property
     def p_atm_over_C10(self) -> float:
@@ -63,11 +70,13 @@ class SnapInput:
 
 def snap_input(R_mm, t_mm, h_mm, C10_MPa, delta_max_mm=None, unload_to_mm=None,
                pocket="vented", gas_exponent=1.0, p_atm_kPa=P_ATM_KPA, seal="turn",
-               interface="frictionless", stick="turn", mesh="coarse",
+               interface="frictionless", stick="turn", mesh="coarse", contact="soft",
                names=None) -> SnapInput:
     """The checked input; InputError (one line naming the field as `names` calls it,
     default API_NAMES) on the first rule broken.  delta_max defaults to 10 t (at most
-    the domain's bound); a sealed pocket without unload_to is pulled to -t."""
+    the domain's bound); a sealed pocket without unload_to is pulled to -t.  `contact`
+    one of CONTACTS: "soft" (the default penalty) or "sharp" (the jump where a sharp
+    contact loses stability, in smaller arc steps)."""
     n = dict(API_NAMES, **(names or {}))
     R = check_finite(R_mm, n["R_mm"], "mm")
     check_R(R, n["R_mm"])
@@ -82,7 +91,8 @@ def snap_input(R_mm, t_mm, h_mm, C10_MPa, delta_max_mm=None, unload_to_mm=None,
                          f"{t if field == 't/R' else h:g} mm ({e})") from None
     for key, value, allowed in (("pocket", pocket, pk.MODES), ("seal", seal, SEALS),
                                 ("interface", interface, INTERFACES),
-                                ("stick", stick, STICKS), ("mesh", mesh, MESHES)):
+                                ("stick", stick, STICKS), ("mesh", mesh, MESHES),
+                                ("contact", contact, tuple(CONTACTS))):
         if value not in allowed:
             raise InputError(f"{n[key]}: {value!r} must be one of {', '.join(allowed)}")
     if delta_max_mm is None:
@@ -110,7 +120,7 @@ def snap_input(R_mm, t_mm, h_mm, C10_MPa, delta_max_mm=None, unload_to_mm=None,
     if not p_atm_kPa > 0:
         raise InputError(f"{n['p_atm_kPa']}: {p_atm_kPa:g} must be > 0 (kPa)")
     return SnapInput(R, t, h, C10, delta_max, unload_to_mm, pocket, gas_exponent, p_atm_kPa,
-                     seal, interface, stick, mesh)
+                     seal, interface, stick, mesh, contact)
 
 
 @dataclass(frozen=True)
@@ -242,7 +252,10 @@ def trace_snap(inp: SnapInput, progress=None) -> SnapResult:
     if inp.pocket == "sealed":
         d = pk.bind(d, pk.Pocket("sealed", inp.p_atm_over_C10, inp.gas_exponent))
     settings = dataclasses.replace(SnapSettings(), seal_at_turn=inp.seal == "turn",
-                                   stick_at_turn=inp.stick == "turn")
+                                   stick_at_turn=inp.stick == "turn",
+                                   onset=CONTACTS[inp.contact])
+    if inp.contact == "sharp":
+        settings = dataclasses.replace(settings, ds_max=min(settings.ds_max, SHARP_DS_MAX))
     unload_to = None if inp.unload_to_mm is None else inp.unload_to_mm / inp.R_mm
     path = trace_loading(d, delta_max, settings, progress, unload_to=unload_to,
                          interface=inp.interface)

@@ -16,7 +16,8 @@ ring, which the energy method of a contact disc does not follow; issue 42, item 
 the wall time.  The sealed pocket (suction under the ring) is not in this table: its
 tensile pull-off needs adhesion at a ring's edges (docs/thin-shells.md, "Not built yet").
 With --figure: the gain against p / p_cl per shell and gamma, with its error bar (the two
-P* bars combined as independent: |gain| sqrt((e/P*)^2 + (e0/P*(0))^2)), and P* in N.
+P* bars combined as independent: |gain| sqrt((e/P*)^2 + (e0/P*(0))^2); 0 at p = 0), and
+P* in N.
 """
 import math
 from pathlib import Path
@@ -69,7 +70,8 @@ def main(argv):
                     open_P[g] = (fl["P_N"], fl["P_N_error"])
                 P0, e0 = open_P.get(g, (float("nan"), float("nan")))
                 gain = fl["P_N"] / P0
-                gain_bar = abs(gain) * math.hypot(fl["P_N_error"] / fl["P_N"], e0 / P0)
+                gain_bar = (abs(gain) * math.hypot(fl["P_N_error"] / fl["P_N"], e0 / P0)
+                            if f else 0.0)      # P*(0) / P*(0) is 1 exactly
                 answered.append((t_over_R, h_over_R, g, -f, fl["P_N"], fl["P_N_error"],
                                  gain, gain_bar))
                 print(head + f"{fl['P_N']:.4f} +- {fl['P_N_error']:.2g} | {fl['a_mm']:.3f} | "

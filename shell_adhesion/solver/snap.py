@@ -341,7 +341,8 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
     settings.max_states states.  A loading (frictionless, no sealed pocket, no adhesion)
     whose step fails below ds_min jumps instead (`_jump`, settings.jump_push > 0): the
     state it lands on, at the same delta, follows with `landed` set, and the energy the
-    jump dissipated is the state before's anchor_jump.  `progress(state)` is called after each state if given.
+    jump dissipated is the state before's anchor_jump (a stall right after a landing ends
+    the path).  `progress(state)` is called after each state if given.
 
     `interface` the tangential contact (contact.INTERFACES): "frictionless", or
     "no_slip": a quadrature point in contact is held radially at its radius at the last
@@ -419,7 +420,7 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
                 ended_by = f"step below {s.ds_min:g} at delta = {delta:.6g} R ({err})"
                 if not (s.jump_push > 0 and turn < 0 and beta is None and adhesion is None
                         and (cn.d.cavity is None or not cn.d.cavity.sealed)
-                        and delta < delta_max):
+                        and delta < delta_max and not states[-1].landed):
                     break
                 try:
                     x, K, r, it = _jump(cn, c, x, delta, s.jump_push * d.capmesh.cap.t,

@@ -19,6 +19,7 @@ from shell_adhesion.atomic import write_text_atomic
 from shell_adhesion.errors import InputError
 from shell_adhesion.solver.contact import INTERFACES
 from shell_adhesion.solver.pocket import MODES as POCKETS
+from shell_adhesion.solver.snap import SnapSettings
 
 from . import thin_shell
 from .flags import FIGURE_FORMATS, check_output, number
@@ -162,7 +163,8 @@ def report(result) -> str:
                      "contact loses stability at 6.33 t (--contact sharp; docs/thin-shells.md)")
     elif out["jumps"]:
         lines.append("  the sharp contact's jump: where the loading cannot go on (the "
-                     "centre lifts at fixed delta and P), the rim is pushed on by 0.01 t and "
+                     f"centre lifts at fixed delta and P), the rim is pushed on by "
+                     f"{SnapSettings.jump_push:g} t and "
                      "the shell settles by damped descent (docs/thin-shells.md)")
     ring = out["first_ring"]
     lines.append("first ring around a dimple (apex up by > 0.1 t): " + (f"state {ring['state']}, delta {ring['delta_mm']:.4g} mm, "

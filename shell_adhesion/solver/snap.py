@@ -430,8 +430,10 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
                     break
                 t = cn.tangent_at(K, c)
                 before = states[-1]
-                states.append(dataclasses.replace(_state(cn, x, delta, K, r, t, it, 0.0),
+                now = time.perf_counter()
+                states.append(dataclasses.replace(_state(cn, x, delta, K, r, t, it, now - clock),
                                                   landed=True))
+                clock = now
                 states[-2] = dataclasses.replace(before, anchor_jump=before.anchor_jump + (
                     states[-1].U + states[-1].Pi - before.U - before.Pi))
                 if progress is not None:
@@ -522,14 +524,13 @@ def _jump(cn, c, x, delta, push, steps):
     fixed = (np.zeros(cn.d.ndof), 1.0)
     y = x.copy()
     y[c.rimz] = -(delta + push)
-    y, n = _descend(cn, c, y, steps)
-    y, _, K, r, (full, chord) = cn.correct(c, y, delta + push, fixed, 0.0)
+    y, n = _descend(cn, c, y, steps)        # ends where a corrector at delta + push converges
     y[c.rimz] = -delta
-    y, _, K, r, (full2, chord2) = cn.correct(c, y, delta, fixed, 0.0)
+    y, _, K, r, (full, chord) = cn.correct(c, y, delta, fixed, 0.0)
     energy = lambda z: strain_energy(cn.d, z) + cn.iface.energy(z)      # noqa: E731
     if not energy(y) < energy(x):
         raise ConvergenceError("the shell settled back where it was")
-    return y, K, r, n + full + chord + full2 + chord2
+    return y, K, r, n + full + chord
 
 
 def _adhere(cn, law, c, x, delta, arc):

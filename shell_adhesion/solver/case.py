@@ -449,7 +449,7 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
                 progress=None, map=None, path_progress=None,
                 material: Material = NEO_HOOKE, cavity: Cavity = OPEN, uniform: float = None,
                 a_stop: float = None, reach=None, known=None, gamma_edge: float = 0.0,
-                family: str = None) -> tuple:
+                family: str = None, a_window: tuple = None) -> tuple:
     """Loading and relaxation paths of one shell: (PathSet, Discretisation, LoadingPath).
 
     A loading that reaches the element-quality limit (or stalls) before delta_max stops
@@ -469,7 +469,9 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
     (solver.edge), so the set answers that gamma exactly and others to first order in the
     difference (shell_adhesion.energy).  `family` ("corner" or "midside") picks the
     node type the relaxed contact fronts end on (`relaxation_starts`; None: the larger);
-    the set's stats say which (`relaxation_family`).
+    the set's stats say which (`relaxation_family`).  `a_window` (lo, hi): only the
+    starts whose contact radius / R lies in [lo, hi] are relaxed (a reference near a
+    known pull-off radius: the equilibrium curve is then known only there).
     """
     if not (isinstance(gamma_max, (int, float)) and math.isfinite(gamma_max) and gamma_max > 0):
         raise InputError(f"gamma_max: {shown(gamma_max)} must be a finite number > 0 (gamma/(C10 R))")
@@ -481,6 +483,8 @@ def solve_paths(t: float, h: float, interface: str = "no_slip", mesh: str = "def
     if relax_paths:
         starts = relaxation_starts(loading, d.capmesh, family)
         used = start_family(starts, d.capmesh)
+        if a_window is not None:
+            starts = [s for s in starts if a_window[0] <= s.a <= a_window[1]]
         reaches = [1.0 if reach is None else float(reach(s)) for s in starts]
         last = len(starts) - 1
         done = {}               # the paths `known` already holds (views: the last one's)

@@ -409,8 +409,20 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
                 # across a loop of the path (the stuck ring peeling)
                 raise ConvergenceError("the chord left the tangents by more than "
                                        f"{math.degrees(math.acos(cos_min)):.0f} degrees")
+            if turn < 0 and dn < 0.0:
+                # the loading came back off the plane: the continuation turned round
+                # onto the branch it came along (seen on the fine mesh of t/R 0.02, h/R 1
+                # at 4.91 t, where the soft contact's fold lies on coarser meshes)
+                raise _TurnedBack("the path turned back onto its own branch")
         except ConvergenceError as err:
             ds *= 0.5
+            if isinstance(err, _TurnedBack):
+                # back to where it turned; the rim pushed on from there (`_jump`, onward)
+                k = _fold(states)
+                del states[k + 1:]
+                x, delta = states[k].x.copy(), states[k].delta
+                ds = s.ds_min / 4
+                err = _TurnedBack(f"{err} from delta = {delta:.6g} R")
             if (cn.d.cavity is not None and cn.d.cavity.sealed and ds < s.open_ds
                     and (isinstance(err, _PocketOpens) or not _sealed_ahead(cn, x, t, ds))):
                 ended_by = (f"pocket opened: the contact ring around it is lost between "
@@ -423,8 +435,9 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
                         and delta < delta_max and not states[-1].landed):
                     break
                 try:
-                    x, K, r, it = _jump(cn, c, x, delta, s.jump_push * d.capmesh.cap.t,
-                                        s.jump_descent)
+                    x, delta, K, r, it, landed = _jump(
+                        cn, c, x, delta, s.jump_push * d.capmesh.cap.t, s.jump_descent,
+                        onward=isinstance(err, _TurnedBack))
                 except ConvergenceError as why:
                     ended_by += f"; no jump from there: {why}"
                     break
@@ -432,10 +445,11 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
                 before = states[-1]
                 now = time.perf_counter()
                 states.append(dataclasses.replace(_state(cn, x, delta, K, r, t, it, now - clock),
-                                                  landed=True))
+                                                  landed=landed))
                 clock = now
-                states[-2] = dataclasses.replace(before, anchor_jump=before.anchor_jump + (
-                    states[-1].U + states[-1].Pi - before.U - before.Pi))
+                if landed:
+                    states[-2] = dataclasses.replace(before, anchor_jump=before.anchor_jump + (
+                        states[-1].U + states[-1].Pi - before.U - before.Pi))
                 if progress is not None:
                     progress(states[-1])
                 ds = s.ds_first
@@ -494,7 +508,7 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
             states[-1] = _state(cn, x, delta, K, r, t, it, states[-1].seconds, slope)
         if adhesion is not None and turn == len(states) - 1:
             try:
-                cn, x, K, r, c, t, n = _adhere(cn, adhesion, c, x, delta, arc)
+                cn, x, K, r, c, t, n = _adhere(cn.d, adhesion, c, x, delta, arc)
             except ConvergenceError as err:
                 ended_by = f"the adhesion did not switch on at delta = {delta:.6g} R ({err})"
                 break
@@ -514,34 +528,54 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
     return SnapPath(tuple(states), ended_by, _sum(timers), turn)
 
 
-def _jump(cn, c, x, delta, push, steps):
+def _fold(states) -> int:
+    """The index of the last state at the largest delta of a loading."""
+    D = np.array([st.delta for st in states])
+    return int(np.flatnonzero(D == D.max())[-1])
+
+
+def _jump(cn, c, x, delta, push, steps, onward=False):
     """The displacement-controlled jump from the state x at delta / R where the loading
     cannot go on: the rim pushed on by `push` / R, the shell let settle there by damped
     descent (`arclength._descend`, at most `steps` steps), and the state it settles in
-    brought back to delta on its own branch (Newton at fixed delta).  Returns (x, K, r,
-    iterations); ConvergenceError if it does not settle, finds no state at delta, or
-    settles back where it started (its energy not below the start's)."""
+    brought back to delta on its own branch (Newton at fixed delta).  Returns (x, delta,
+    K, r, iterations, landed): landed True, at delta.  Where the shell settles back on
+    the branch it was on (its energy at delta not below the start's by JUMP_GAIN), that
+    branch goes on past delta: with `onward`, the settled state at delta + push is
+    returned (landed False), else ConvergenceError; ConvergenceError also if it does not
+    settle or finds no state at delta."""
     fixed = (np.zeros(cn.d.ndof), 1.0)
     y = x.copy()
     y[c.rimz] = -(delta + push)
     y, n = _descend(cn, c, y, steps)        # ends where a corrector at delta + push converges
-    y[c.rimz] = -delta
-    y, _, K, r, (full, chord) = cn.correct(c, y, delta, fixed, 0.0)
-    energy = lambda z: strain_energy(cn.d, z) + cn.iface.energy(z)      # noqa: E731
-    if not energy(y) < energy(x):
+    z = y.copy()
+    z[c.rimz] = -delta
+    z, _, K, r, (full, chord) = cn.correct(c, z, delta, fixed, 0.0)
+    energy = lambda v: strain_energy(cn.d, v) + cn.iface.energy(v)      # noqa: E731
+    if energy(z) < energy(x) - JUMP_GAIN * abs(energy(x)):
+        return z, delta, K, r, n + full + chord, True
+    if not onward:
         raise ConvergenceError("the shell settled back where it was")
-    return y, K, r, n + full + chord
+    y, _, K, r, (more, chords) = cn.correct(c, y, delta + push, fixed, 0.0)
+    return y, delta + push, K, r, n + full + chord + more + chords, False
 
 
-def _adhere(cn, law, c, x, delta, arc):
-    """Switch finite-range adhesion (`law`) on at fixed delta: a new continuation on the
-    cohesive interface, the law ramped in from SWITCH_OFF (`arclength._switch_on`).
-    Returns (continuation, x, K, r, constraints, tangent oriented to unload, iterations)."""
-    iface = Interface(cn.d, law, None)
+JUMP_GAIN = 1e-9    # a jump lands on another state only if it lowers the energy by this
+#                     share (the jumps measured dissipate 0.4 of it; the same state found
+#                     again differs by round-off)
+
+
+def _adhere(d, law, c, x, delta, arc):
+    """Switch finite-range adhesion (`law`) on at fixed delta, from the state x on the
+    discretisation d: a new continuation on the cohesive interface, the law ramped in
+    from SWITCH_OFF (`arclength._switch_on`).  Returns (continuation, x, K, r,
+    constraints, tangent oriented to unload, iterations); ConvergenceError where no
+    equilibrium is found."""
+    iface = Interface(d, law, None)
     new = _Continuation(iface.with_law(scaled(law, SWITCH_OFF)), "frictionless", arc)
     x, K, r, c, _, n = _switch_on(new, iface, c, x, delta, np.zeros(0, dtype=int),
                                   "frictionless")
-    t = new.tangent_at(K, c, (np.zeros(cn.d.ndof), -1.0))
+    t = new.tangent_at(K, c, (np.zeros(d.ndof), -1.0))
     return new, x, K, r, c, t, n
 
 
@@ -562,6 +596,10 @@ def _check_interface(interface):
 
 class _PocketOpens(ConvergenceError):
     """A step's state has lost the ring around the sealed pocket."""
+
+
+class _TurnedBack(ConvergenceError):
+    """A loading step came back off the plane: the path turned round onto its own branch."""
 
 
 def _pocket_of(d):

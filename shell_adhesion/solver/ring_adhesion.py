@@ -21,6 +21,13 @@ from shell_adhesion.solver.contact import constraints
 from shell_adhesion.solver.snap import SnapSettings, SnapState, _adhere, _state
 
 
+WIDEN_MAX = 4       # `adhesion_limit`: moves of a bracket whose ends are on one side
+# gamma_c / (C10 R) is about LIMIT_SCALE (t/R)^3 (t/R 0.01 and 0.02, h = R, pressed to 5 t,
+# lambda 0.3: 4.9 and 5.2; the plate's contact edge, D k^2 / 2 with k ~ 1 / R): the
+# first guess of a search
+LIMIT_SCALE = 5.0
+
+
 @dataclass(frozen=True)
 class RingAdhesion:
     """One law switched on at a ring state: `holds` if the equilibrium found keeps a ring
@@ -55,13 +62,15 @@ def ring_holds(d, ring: SnapState, law: CohesiveLaw,
 
 def adhesion_limit(d, ring: SnapState, law_of, gamma_lo: float, gamma_hi: float,
                    rel: float = 0.05, max_solves: int = 20,
-                   settings: SnapSettings = SnapSettings(), progress=None) -> tuple:
+                   settings: SnapSettings = SnapSettings(), progress=None,
+                   widen: float = None) -> tuple:
     """Bracket gamma_c, the largest gamma / (C10 R) at which the ring state keeps its
     ring (`ring_holds`), by bisection in ln gamma between gamma_lo (must hold) and
     gamma_hi (must not) until gamma_hi / gamma_lo <= 1 + rel.  `law_of(gamma)` gives the
-    law of a gamma (e.g. at a fixed Tabor parameter).  Returns (lo, hi) as RingAdhesion
-    results; ValueError where the ends do not bracket, or after max_solves switches;
-    `progress(result)` after each."""
+    law of a gamma (e.g. at a fixed Tabor parameter).  `widen` (> 1): where an end is on
+    the wrong side, the bracket moves by that factor (at most WIDEN_MAX times) instead.
+    Returns (lo, hi) as RingAdhesion results; ValueError where the ends do not bracket,
+    or after max_solves switches; `progress(result)` after each."""
     if not (0 < gamma_lo < gamma_hi and rel > 0):
         raise ValueError(f"adhesion_limit: need 0 < gamma_lo ({gamma_lo!r}) < gamma_hi "
                          f"({gamma_hi!r}) and rel ({rel!r}) > 0")
@@ -76,6 +85,11 @@ def adhesion_limit(d, ring: SnapState, law_of, gamma_lo: float, gamma_hi: float,
         return out
 
     lo, hi = attempt(gamma_lo), attempt(gamma_hi)
+    for _ in range(WIDEN_MAX if widen else 0):
+        if not lo.holds and not hi.holds:
+            lo, hi = attempt(lo.gamma / widen), lo
+        elif lo.holds and hi.holds:
+            lo, hi = hi, attempt(hi.gamma * widen)
     if not lo.holds:
         raise ValueError(f"adhesion_limit: the ring does not hold at gamma_lo = {gamma_lo:g} "
                          f"({lo.why})")

@@ -5,11 +5,12 @@ optionally pulled back with the pocket under its dimple vented or sealed
     shell-adhesion snap --R 20 --t 0.4 --h 20 --C10 0.3 [--delta-max 4] [--unload-to -0.4]
         [--pocket vented|sealed] [--seal turn|ring] [--gas-exponent 1] [--p-atm-kPa 101.325]
         [--interface frictionless|no_slip] [--stick turn|touch] [--mesh coarse]
-        [--json] [--csv FILE] [--plot FILE]
+        [--ring-adhesion LAMBDA] [--json] [--csv FILE] [--plot FILE]
 
 Prints the jumps under displacement control (from which state to which), the first ring,
 the states (every state whose contact set changes shape and about 30 more), the pocket's
-story and the energy balance.  A path that stops short prints what it reached and exits 1.
+story and the energy balance, and with --ring-adhesion the adhesion the ring at delta-max
+survives.  A path that stops short prints what it reached and exits 1.
 """
 import argparse
 import math
@@ -28,7 +29,7 @@ from .progress import bar
 FLAGS = dict(R_mm="--R", t_mm="--t", h_mm="--h", C10_MPa="--C10", delta_max_mm="--delta-max",
              unload_to_mm="--unload-to", pocket="--pocket", gas_exponent="--gas-exponent",
              p_atm_kPa="--p-atm-kPa", seal="--seal", interface="--interface", stick="--stick",
-             mesh="--mesh", contact="--contact")
+             mesh="--mesh", contact="--contact", ring_adhesion="--ring-adhesion")
 ROWS = 30              # about this many states in the printed table
 
 
@@ -76,6 +77,11 @@ def add_parser(sub, one_dash):
                    help="the contact penalty's onset: soft (default, 1e-4 R: the snap is "
                         "passed by folds and comes early) or sharp (3e-6 R: the shell jumps "
                         "where it loses stability; slower)")
+    s.add_argument("--ring-adhesion", dest="ring_adhesion", default=None, metavar="LAMBDA",
+                   help="after the loading (vented, frictionless), bracket the largest "
+                        "adhesion gamma [J/m^2] the ring at delta-max survives (smoothed "
+                        "Dugdale law of Tabor parameter LAMBDA, e.g. 0.3; a few minutes); "
+                        "above it the dimple closes")
     s.add_argument("--gamma", default=None, help=argparse.SUPPRESS)
     s.add_argument("--json", action="store_true", help="print JSON (every state) instead of text")
     s.add_argument("--csv", default=None, metavar="FILE", help="write every state as CSV")
@@ -94,7 +100,7 @@ def run(ns) -> int:
         ("R_mm", "R", "mm"), ("t_mm", "t", "mm"), ("h_mm", "h", "mm"),
         ("C10_MPa", "C10", "MPa"), ("delta_max_mm", "delta_max", "mm"),
         ("unload_to_mm", "unload_to", "mm"), ("gas_exponent", "gas_exponent", "1"),
-        ("p_atm_kPa", "p_atm_kPa", "kPa"))}
+        ("p_atm_kPa", "p_atm_kPa", "kPa"), ("ring_adhesion", "ring_adhesion", "1"))}
     if numbers["p_atm_kPa"] is None:
         del numbers["p_atm_kPa"]
     inp = thin_shell.snap_input(**numbers, pocket=ns.pocket, seal=ns.seal,
@@ -116,6 +122,10 @@ def run(ns) -> int:
     if result.failed:
         print(f"shell-adhesion: failed: the path stopped short: {result.failed}",
               file=sys.stderr)
+        return 1
+    ring = result.ring_adhesion()
+    if ring is not None and not ring["bracketed"]:
+        print(f"shell-adhesion: failed: --ring-adhesion: {ring['why']}", file=sys.stderr)
         return 1
     if result.energy_miss > thin_shell.ENERGY_TOL:
         print(f"shell-adhesion: failed: the energy balance misses by {result.energy_miss:.2g} "
@@ -196,6 +206,15 @@ def report(result) -> str:
         lines.append(f"pull-off while sealed {pk['pull_off_N']:.4g} N (least P "
                      f"{pk['least_P_N']:+.4g} N; ideal suction force p_a pi r_seal^2 "
                      f"{pk['ideal_suction_N']:.4g} N)")
+    ring = out["ring_adhesion"]
+    if ring and ring["bracketed"]:
+        lines.append(f"adhesion the ring survives (smoothed Dugdale, Tabor {ring['tabor']:g}): "
+                     f"gamma_c {ring['gamma_lo_J_m2']:.4g} to {ring['gamma_hi_J_m2']:.4g} J/m^2 "
+                     f"(gamma/(C10 R) {ring['gamma_lo']:.4g} to {ring['gamma_hi']:.4g}) at "
+                     f"delta {ring['delta_mm']:.4g} mm; below it the ring widens (to "
+                     f"{ring['ring_at_lo']} mm at the lower end), above it the dimple closes")
+    elif ring:
+        lines.append(f"adhesion the ring survives: not bracketed ({ring['why']})")
     ok = out["energy_balance"] <= thin_shell.ENERGY_TOL
     lines.append(f"energy balance: |work of P - strain - contact - gas energy| <= "
                  f"{out['energy_balance']:.2g} of max strain energy"

@@ -6,7 +6,8 @@ ambient pressure in kPa.  Outputs the same: delta in mm (> 0 approach), P in N (
 compression), radii in mm, the pocket's volume in mm^3 and its gauge pressure in kPa
 (> 0 pushes the shell off the plane).  Frictionless or sticking contact, no adhesion
 (gamma = 0): adhesion switched on after the snap pulls the dimple flat
-(docs/thin-shells.md).
+(docs/thin-shells.md) above a limit; `ring_adhesion` (a Tabor parameter) brackets that
+limit, gamma_c in J/m^2, at the ring the loading ends on (solver.ring_adhesion).
 """
 from dataclasses import dataclass
 import dataclasses
@@ -22,7 +23,11 @@ from shell_adhesion.solver.contact import INTERFACES
 from shell_adhesion.solver.forms import discretise
 from shell_adhesion.solver.geometry import DEPTH_SHARE, check_delta_max, domain_delta_max
 from shell_adhesion.solver.mesh import cap_mesh, mesh_spec
-from shell_adhesion.solver.scaling import check_C10, check_finite, check_R, force_N
+from shell_adhesion.solver.scaling import (check_C10, check_finite, check_R, force_N,
+                                           gamma_hat)
+from shell_adhesion.solver import maugis_dugdale as md
+from shell_adhesion.solver.cohesive import CohesiveLaw
+from shell_adhesion.solver.ring_adhesion import LIMIT_SCALE, adhesion_limit
 from shell_adhesion.solver.snap import SnapSettings, loading_cap, ring_arc, trace_loading
 
 MESHES = ("coarser", "coarse", "default")
@@ -41,7 +46,10 @@ ENERGY_TOL = 1e-3                  # the energy balance a path is vouched for at
 API_NAMES = dict(R_mm="R_mm", t_mm="t_mm", h_mm="h_mm", C10_MPa="C10_MPa",
                  delta_max_mm="delta_max_mm", unload_to_mm="unload_to_mm", pocket="pocket",
                  gas_exponent="gas_exponent", p_atm_kPa="p_atm_kPa", seal="seal",
-                 interface="interface", stick="stick", mesh="mesh", contact="contact")
+                 interface="interface", stick="stick", mesh="mesh", contact="contact",
+                 ring_adhesion="ring_adhesion")
+RING_REL = 0.05                    # the bracket of gamma_c: its ends this far apart
+K_OVER_C10 = 32.0 / 3.0            # the Tabor parameter's K = 4 E* / 3, E* = 8 C10
 
 
 @dataclass(frozen=True)
@@ -62,6 +70,7 @@ class SnapInput:
     stick: str
     mesh: str
     contact: str = "soft"
+    ring_adhesion: float = None    # a Tabor parameter: bracket gamma_c at the last ring
 
     @property
     def p_atm_over_C10(self) -> float:
@@ -71,7 +80,7 @@ class SnapInput:
 def snap_input(R_mm, t_mm, h_mm, C10_MPa, delta_max_mm=None, unload_to_mm=None,
                pocket="vented", gas_exponent=1.0, p_atm_kPa=P_ATM_KPA, seal="turn",
                interface="frictionless", stick="turn", mesh="coarse", contact="soft",
-               names=None) -> SnapInput:
+               ring_adhesion=None, names=None) -> SnapInput:
     """The checked input; InputError (one line naming the field as `names` calls it,
     default API_NAMES) on the first rule broken.  delta_max defaults to 10 t (at most
     the domain's bound); a sealed pocket without unload_to is pulled to -t.  `contact`
@@ -119,8 +128,19 @@ def snap_input(R_mm, t_mm, h_mm, C10_MPa, delta_max_mm=None, unload_to_mm=None,
     p_atm_kPa = check_finite(p_atm_kPa, n["p_atm_kPa"], "kPa")
     if not p_atm_kPa > 0:
         raise InputError(f"{n['p_atm_kPa']}: {p_atm_kPa:g} must be > 0 (kPa)")
+    if ring_adhesion is not None:
+        ring_adhesion = check_finite(ring_adhesion, n["ring_adhesion"])
+        if not ring_adhesion > 0:
+            raise InputError(f"{n['ring_adhesion']}: {ring_adhesion:g} must be > 0 (the "
+                             "Tabor parameter of the adhesion law)")
+        for key, value, need in (("unload_to_mm", unload_to_mm, None),
+                                 ("pocket", pocket, "vented"),
+                                 ("interface", interface, "frictionless")):
+            if value != need:
+                raise InputError(f"{n['ring_adhesion']}: needs the loading alone, vented "
+                                 f"and frictionless, not {n[key]} {value}")
     return SnapInput(R, t, h, C10, delta_max, unload_to_mm, pocket, gas_exponent, p_atm_kPa,
-                     seal, interface, stick, mesh, contact)
+                     seal, interface, stick, mesh, contact, ring_adhesion)
 
 
 @dataclass(frozen=True)
@@ -130,6 +150,8 @@ class SnapResult:
     input: SnapInput
     path: object                   # solver.snap.SnapPath (dimensionless)
     ndof: int
+    ring_limit: tuple = None       # (lo, hi) solver.ring_adhesion.RingAdhesion results
+    ring_why: str = ""             # why ring_adhesion was asked and not bracketed
 
     def mm(self, v):
         return v * self.input.R_mm
@@ -214,6 +236,26 @@ class SnapResult:
                     ideal_suction_N=self.N(self.input.p_atm_over_C10 * math.pi * r_max ** 2),
                     p_min_kPa=self.kPa(p.min()), p_max_kPa=self.kPa(p.max()))
 
+    def gamma_J_m2(self, g):
+        """gamma / (C10 R) in J/m^2 (the inverse of scaling.gamma_hat)."""
+        return g / gamma_hat(1.0, self.input.C10_MPa, self.input.R_mm)
+
+    def ring_adhesion(self):
+        """With ring_adhesion asked: the bracket of gamma_c (J/m^2 and / (C10 R)), the ring
+        it was found at, the switches made, or why not; else None."""
+        if self.input.ring_adhesion is None:
+            return None
+        if self.ring_limit is None:
+            return dict(tabor=self.input.ring_adhesion, bracketed=False, why=self.ring_why)
+        lo, hi = self.ring_limit
+        last = self.path.states[-1]
+        return dict(tabor=self.input.ring_adhesion, bracketed=True,
+                    gamma_lo_J_m2=self.gamma_J_m2(lo.gamma),
+                    gamma_hi_J_m2=self.gamma_J_m2(hi.gamma), gamma_lo=lo.gamma,
+                    gamma_hi=hi.gamma, delta_mm=self.mm(last.delta),
+                    ring=last.contact_in(self.input.R_mm),
+                    ring_at_lo=lo.state.contact_in(self.input.R_mm))
+
     def to_dict(self) -> dict:
         s = self.path.states
         return dict(input=dataclasses.asdict(self.input), dofs=self.ndof,
@@ -224,6 +266,7 @@ class SnapResult:
                     least_P_unloading_N=(self.N(min(x.P for x in s[self.path.turn:]))
                                          if self.path.turn >= 0 else None),
                     pocket=self.pocket(), energy_balance=self.energy_miss,
+                    ring_adhesion=self.ring_adhesion(),
                     newton_iterations=self.path.timer.newton_iterations,
                     states=self.states())
 
@@ -259,7 +302,25 @@ def trace_snap(inp: SnapInput, progress=None) -> SnapResult:
     unload_to = None if inp.unload_to_mm is None else inp.unload_to_mm / inp.R_mm
     path = trace_loading(d, delta_max, settings, progress, unload_to=unload_to,
                          interface=inp.interface)
-    return SnapResult(inp, path, int(d.ndof))
+    if inp.ring_adhesion is None:
+        return SnapResult(inp, path, int(d.ndof))
+    last = path.states[-1]
+    if path.ended_by or not (last.ring and last.apex_gap > settings.seal_lift * T):
+        why = (f"the loading stopped short ({path.ended_by})" if path.ended_by else
+               f"the contact at delta_max is {last.contact_in(inp.R_mm)} (mm), not a ring "
+               "around a dimple: press further")
+        return SnapResult(inp, path, int(d.ndof), None, why)
+
+    def law_of(gamma):
+        return CohesiveLaw(md.sigma0_of(inp.ring_adhesion, gamma, 1.0, K_OVER_C10), gamma)
+
+    guess = LIMIT_SCALE * T ** 3
+    try:
+        limit = adhesion_limit(d, last, law_of, guess / 2, guess * 2, RING_REL,
+                               settings=settings, widen=4.0)
+    except ValueError as err:
+        return SnapResult(inp, path, int(d.ndof), None, str(err))
+    return SnapResult(inp, path, int(d.ndof), limit)
 
 
 def csv_text(result: SnapResult) -> str:

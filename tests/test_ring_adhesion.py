@@ -83,3 +83,29 @@ def test_the_limit_scales_as_the_cube_of_the_thickness():
     state = trace_loading(d, 5 * t).states[-1]
     assert ring_holds(d, state, law_of(0.9 * 4.2e-5 / 8)).holds
     assert not ring_holds(d, state, law_of(1.1 * 4.2e-5 / 8)).holds
+
+
+@pytest.mark.slow
+def test_unloaded_below_the_limit_the_ring_closes_then_the_disc_pulls_off(ring):
+    """gamma 2e-5 (half the limit at 5 t), switched on at the turn of the coarse loading
+    and unloaded (`trace_loading(..., adhesion=)`, about 30 s): the ring spreads inward as
+    the rim rises, P compressive; where delta folds the shell jumps (the rim pushed back,
+    `snap._jump`): at 3.66 t the dimple closes, from a ring 0.287-0.329 R to a disc of
+    0.334 R, P up from 4.73e-4 to 5.75e-4 C10 R^2, 2.6e-6 C10 R^3 dissipated (6 % of max
+    U).  The disc then pulls off: P* = -5.39e-5 C10 R^2 at delta* = -0.355 t, and the
+    jump at the fixed-grips fold leaves the law's reach.  Energy balance 6.3e-6 of max U."""
+    from shell_adhesion.solver.snap import adhesive_pull_off
+    d, _ = ring
+    path = trace_loading(d, DELTA, unload_to=-0.5, adhesion=law_of(2e-5))
+    assert path.ended_by == ""
+    closes = [j for j in path.jumps() if j.i_from > path.turn and j.contact_to.startswith("disc")]
+    assert closes, "the ring did not close"
+    j = closes[0]
+    assert 3.5 * T < j.delta < 3.8 * T and j.contact_from.startswith("ring")
+    assert j.P_to > j.P_from > 0
+    before = path.states[j.i_from]
+    U = path.array("U")
+    assert 0.02 * U.max() < -before.anchor_jump < 0.2 * U.max()
+    P_star, d_star = adhesive_pull_off(path)
+    assert P_star == pytest.approx(-5.39e-5, rel=0.05) and -0.5 * T < d_star < 0
+    assert path.energy_miss() < 1e-4

@@ -414,6 +414,37 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
                 # onto the branch it came along (seen on the fine mesh of t/R 0.02, h/R 1
                 # at 4.91 t, where the soft contact's fold lies on coarser meshes)
                 raise _TurnedBack("the path turned back onto its own branch")
+            if adhesion is not None and 0 <= turn < len(states) - 1 and dn > delta \
+                    and s.jump_push > 0:
+                # the adhesive unloading passed a fold of delta: under displacement
+                # control the shell jumps there, from the state before it
+                raise _FoldPassed("the unloading passed a fold of delta")
+        except _FoldPassed:
+            try:
+                x, delta, K, r, it, landed = _jump(cn, c, x, delta,
+                                                   -s.jump_push * d.capmesh.cap.t,
+                                                   s.jump_descent, onward=True)
+            except ConvergenceError as why:
+                ended_by = (f"the unloading passed a fold of delta at {delta:.6g} R; no "
+                            f"jump from there: {why}")
+                break
+            if gaps(d, x, cn.candidates).min() > adhesion.reach:
+                ended_by = ""       # the jump leaves the law's reach: detached
+                break
+            t = cn.tangent_at(K, c, (np.zeros(d.ndof), -1.0))
+            before = states[-1]
+            now = time.perf_counter()
+            states.append(dataclasses.replace(_state(cn, x, delta, K, r, t, it, now - clock),
+                                              landed=landed))
+            clock = now
+            after = states[-1]
+            if landed:
+                states[-2] = dataclasses.replace(before, anchor_jump=before.anchor_jump + (
+                    after.U + after.Pi + after.E_gas - before.U - before.Pi - before.E_gas))
+            if progress is not None:
+                progress(after)
+            ds = s.ds_first
+            continue
         except ConvergenceError as err:
             ds *= 0.5
             if isinstance(err, _TurnedBack):
@@ -548,9 +579,18 @@ def _jump(cn, c, x, delta, push, steps, onward=False):
     y = x.copy()
     y[c.rimz] = -(delta + push)
     y, n = _descend(cn, c, y, steps)        # ends where a corrector at delta + push converges
-    z = y.copy()
-    z[c.rimz] = -delta
-    z, _, K, r, (full, chord) = cn.correct(c, z, delta, fixed, 0.0)
+    try:
+        z = y.copy()
+        z[c.rimz] = -delta
+        z, _, K, r, (full, chord) = cn.correct(c, z, delta, fixed, 0.0)
+    except ConvergenceError:
+        # back to delta in RETURN_STEPS steps of Newton along the branch it settled on
+        z, full, chord = y, 0, 0
+        for f in np.linspace(1.0, 0.0, RETURN_STEPS + 1)[1:]:
+            z = z.copy()
+            z[c.rimz] = -(delta + f * push)
+            z, _, K, r, (more, chords) = cn.correct(c, z, delta + f * push, fixed, 0.0)
+            full, chord = full + more, chord + chords
     energy = lambda v: strain_energy(cn.d, v) + cn.iface.energy(v)      # noqa: E731
     if energy(z) < energy(x) - JUMP_GAIN * abs(energy(x)):
         return z, delta, K, r, n + full + chord, True
@@ -560,6 +600,7 @@ def _jump(cn, c, x, delta, push, steps, onward=False):
     return y, delta + push, K, r, n + full + chord + more + chords, False
 
 
+RETURN_STEPS = 4    # `_jump`: steps back to delta where one Newton solve does not get there
 JUMP_GAIN = 1e-9    # a jump lands on another state only if it lowers the energy by this
 #                     share (the jumps measured dissipate 0.4 of it; the same state found
 #                     again differs by round-off)
@@ -596,6 +637,10 @@ def _check_interface(interface):
 
 class _PocketOpens(ConvergenceError):
     """A step's state has lost the ring around the sealed pocket."""
+
+
+class _FoldPassed(Exception):
+    """An adhesive unloading step passed a fold of delta (delta rises again)."""
 
 
 class _TurnedBack(ConvergenceError):

@@ -314,7 +314,7 @@ def trace_snap(inp: SnapInput, progress=None) -> SnapResult:
     def law_of(gamma):
         return CohesiveLaw(md.sigma0_of(inp.ring_adhesion, gamma, 1.0, K_OVER_C10), gamma)
 
-    guess = LIMIT_SCALE * T ** 3
+    guess = LIMIT_SCALE * T * last.delta ** 2
     try:
         limit = adhesion_limit(d, last, law_of, guess / 2, guess * 2, RING_REL,
                                settings=settings, widen=4.0)

@@ -342,7 +342,10 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
     whose step fails below ds_min jumps instead (`_jump`, settings.jump_push > 0): the
     state it lands on, at the same delta, follows with `landed` set, and the energy the
     jump dissipated is the state before's anchor_jump (a stall right after a landing ends
-    the path).  `progress(state)` is called after each state if given.
+    the path).  A loading that comes back off the plane (the continuation turned round
+    onto the branch it came along) returns to where it turned and pushes the rim on from
+    there (`_jump`, onward: a jump where the energy falls, else the branch goes on from
+    delta + push).  `progress(state)` is called after each state if given.
 
     `interface` the tangential contact (contact.INTERFACES): "frictionless", or
     "no_slip": a quadrature point in contact is held radially at its radius at the last
@@ -360,7 +363,10 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
     adds nothing over a step at fixed delta).  The unloading steps change no outer gap by
     more than ArcSettings.dx_max delta_c or dx_travel delta_max (as `arclength.trace`),
     and the path ends ("") where every outer point is beyond the law's reach (detached)
-    or at unload_to."""
+    or at unload_to.  Where the unloading passes a fold of delta (delta would rise again)
+    it jumps as under displacement control (`_jump` with the rim pushed back by
+    jump_push t, onward), the jump landing `landed` and its dissipation recorded as
+    above; a jump that leaves the law's reach ends the path ("")."""
     if adhesion is not None and (unload_to is None or interface != "frictionless"):
         raise ValueError("adhesion: a cohesive law needs an unloading (unload_to) and the "
                          "frictionless interface")

@@ -30,6 +30,8 @@ from shell_adhesion.solver.cohesive import CohesiveLaw
 from shell_adhesion.solver.ring_adhesion import LIMIT_SCALE, adhesion_limit
 from shell_adhesion.solver.snap import SnapSettings, loading_cap, ring_arc, trace_loading
 
+from .cohesive_case import K_OVER_C10
+
 MESHES = ("coarser", "coarse", "default")
 # the contact penalty's onset (solver.snap.SnapSettings): "soft", the default 1e-4 R, passes
 # the snap by the folds it makes (the jump comes early); "sharp", 3e-6 R, loses stability
@@ -49,7 +51,6 @@ API_NAMES = dict(R_mm="R_mm", t_mm="t_mm", h_mm="h_mm", C10_MPa="C10_MPa",
                  interface="interface", stick="stick", mesh="mesh", contact="contact",
                  ring_adhesion="ring_adhesion")
 RING_REL = 0.05                    # the bracket of gamma_c: its ends this far apart
-K_OVER_C10 = 32.0 / 3.0            # the Tabor parameter's K = 4 E* / 3, E* = 8 C10
 
 
 @dataclass(frozen=True)
@@ -242,7 +243,7 @@ class SnapResult:
 
     def ring_adhesion(self):
         """With ring_adhesion asked: the bracket of gamma_c (J/m^2 and / (C10 R)), the ring
-        it was found at, the switches made, or why not; else None."""
+        it was found at, or why not; else None."""
         if self.input.ring_adhesion is None:
             return None
         if self.ring_limit is None:

@@ -16,12 +16,9 @@ import time
 
 from shell_adhesion.solver import maugis_dugdale as md
 from shell_adhesion.solver.cohesive import CohesiveLaw
-from shell_adhesion.solver.forms import discretise
-from shell_adhesion.solver.mesh import cap_mesh, mesh_spec
 from shell_adhesion.solver.ring_adhesion import adhesion_limit
-from shell_adhesion.solver.snap import loading_cap, ring_arc, trace_loading
-
-K_OVER_C10 = 32.0 / 3.0
+from shell_adhesion.solver.snap import trace_shell
+from shell_adhesion.study.cohesive_case import K_OVER_C10
 
 
 def main(argv=None):
@@ -36,8 +33,7 @@ def main(argv=None):
     a = ap.parse_args(argv)
     T = a.t
     t0 = time.perf_counter()
-    d = discretise(cap_mesh(loading_cap(T, 1.0), mesh_spec(a.mesh, ring_arc(a.delta_max * T))))
-    path = trace_loading(d, a.delta_max * T)
+    d, path = trace_shell(T, 1.0, a.mesh, a.delta_max * T)
     ring = path.states[-1]
     print(f"t/R {T:g}, h/R 1, {a.mesh} mesh, {d.ndof} dofs: pressed to {ring.delta / T:.4f} t "
           f"({path.ended_by or 'reached'}), P {ring.P:.4e} C10 R^2, contact {ring.contact}, "

@@ -158,9 +158,10 @@ def test_an_unvouched_energy_balance_exits_1(snap, capsys, monkeypatch):
 def test_the_adhesion_a_ring_survives_in_joules(capsys):
     """--ring-adhesion: the bracket of gamma_c in J/m^2 at the ring the loading ends on
     (R 20 mm, t 0.4 mm, C10 0.3 MPa, pressed to 5 t; coarser mesh, lambda 0.3, 10 to 20
-    s).  Measured 0.2617 to 0.2733 J/m^2 (4.36e-5 to 4.56e-5 C10 R; the benchmark's
-    bisection from other ends gave 4.25e-5 to 4.36e-5 on this mesh, the default mesh
-    4.13e-5 to 4.26e-5: tests/test_ring_adhesion.py): held within 0.24 to 0.29.
+    s).  Measured 0.2453 to 0.2562 J/m^2 (4.09e-5 to 4.27e-5 C10 R; the benchmark's
+    bisection from other ends gives 4.36e-5 to 4.47e-5 on this mesh, which is not
+    monotone in gamma there; the default mesh 4.13e-5 to 4.26e-5:
+    tests/test_ring_adhesion.py): held within 0.24 to 0.29.
     Pressed to 1 t there is no ring around a dimple: exit 1, saying so."""
     args = ["snap", *SHELL, "--t", "0.4", "--mesh", "coarser", "--ring-adhesion", "0.3"]
     assert main([*args, "--delta-max", "2", "--json"]) == 0

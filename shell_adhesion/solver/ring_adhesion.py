@@ -40,6 +40,12 @@ class RingAdhesion:
     why: str = ""
 
 
+def around_dimple(state: SnapState, t: float, settings: SnapSettings = SnapSettings()) -> bool:
+    """Whether the state's contact is a ring around an apex lifted by more than
+    settings.seal_lift thicknesses (t / R): the ring `ring_holds` asks to keep."""
+    return state.ring and state.apex_gap > settings.seal_lift * t
+
+
 def ring_holds(d, ring: SnapState, law: CohesiveLaw,
                settings: SnapSettings = SnapSettings()) -> RingAdhesion:
     """Switch `law` on at the ring state `ring` (a state of a frictionless loading without
@@ -47,7 +53,6 @@ def ring_holds(d, ring: SnapState, law: CohesiveLaw,
     shell keeps its ring there (RingAdhesion)."""
     if not ring.ring:
         raise ValueError(f"ring_holds: the state's contact is {ring.contact}, not a ring")
-    lift = settings.seal_lift * d.capmesh.cap.t
     arc = ArcSettings(tol=settings.tol, max_iter=settings.max_iter)
     c = constraints(d, "frictionless", [])
     try:
@@ -55,7 +60,7 @@ def ring_holds(d, ring: SnapState, law: CohesiveLaw,
     except ConvergenceError as err:
         return RingAdhesion(law.gamma, False, None, f"no equilibrium found ({err})")
     state = _state(cn, x, ring.delta, K, r, t, n, 0.0)
-    if state.ring and state.apex_gap > lift:
+    if around_dimple(state, d.capmesh.cap.t, settings):
         return RingAdhesion(law.gamma, True, state)
     return RingAdhesion(law.gamma, False, state, f"the contact became {state.contact}")
 
@@ -71,9 +76,9 @@ def adhesion_limit(d, ring: SnapState, law_of, gamma_lo: float, gamma_hi: float,
     the wrong side, the bracket moves by that factor (at most WIDEN_MAX times) instead.
     Returns (lo, hi) as RingAdhesion results; ValueError where the ends do not bracket,
     or after max_solves switches; `progress(result)` after each."""
-    if not (0 < gamma_lo < gamma_hi and rel > 0):
+    if not (0 < gamma_lo < gamma_hi and rel > 0 and (widen is None or widen > 1)):
         raise ValueError(f"adhesion_limit: need 0 < gamma_lo ({gamma_lo!r}) < gamma_hi "
-                         f"({gamma_hi!r}) and rel ({rel!r}) > 0")
+                         f"({gamma_hi!r}), rel ({rel!r}) > 0 and widen ({widen!r}) > 1")
     solves = 0
 
     def attempt(gamma):
@@ -91,10 +96,10 @@ def adhesion_limit(d, ring: SnapState, law_of, gamma_lo: float, gamma_hi: float,
         elif lo.holds and hi.holds:
             lo, hi = hi, attempt(hi.gamma * widen)
     if not lo.holds:
-        raise ValueError(f"adhesion_limit: the ring does not hold at gamma_lo = {gamma_lo:g} "
+        raise ValueError(f"adhesion_limit: the ring does not hold at gamma_lo = {lo.gamma:g} "
                          f"({lo.why})")
     if hi.holds:
-        raise ValueError(f"adhesion_limit: the ring still holds at gamma_hi = {gamma_hi:g}")
+        raise ValueError(f"adhesion_limit: the ring still holds at gamma_hi = {hi.gamma:g}")
     while hi.gamma / lo.gamma > 1 + rel:
         if solves >= max_solves:
             raise ValueError(f"adhesion_limit: {max_solves} switches and the bracket is "

@@ -438,17 +438,12 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
                 ended_by = ""       # the jump leaves the law's reach: detached
                 break
             t = cn.tangent_at(K, c, (np.zeros(d.ndof), -1.0))
-            before = states[-1]
             now = time.perf_counter()
-            states.append(dataclasses.replace(_state(cn, x, delta, K, r, t, it, now - clock),
-                                              landed=landed))
+            _append(states, dataclasses.replace(_state(cn, x, delta, K, r, t, it, now - clock),
+                                                landed=landed), at_same_delta=landed)
             clock = now
-            after = states[-1]
-            if landed:
-                states[-2] = dataclasses.replace(before, anchor_jump=before.anchor_jump + (
-                    after.U + after.Pi + after.E_gas - before.U - before.Pi - before.E_gas))
             if progress is not None:
-                progress(after)
+                progress(states[-1])
             ds = s.ds_first
             continue
         except ConvergenceError as err:
@@ -479,14 +474,11 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
                     ended_by += f"; no jump from there: {why}"
                     break
                 t = cn.tangent_at(K, c)
-                before = states[-1]
                 now = time.perf_counter()
-                states.append(dataclasses.replace(_state(cn, x, delta, K, r, t, it, now - clock),
-                                                  landed=landed))
+                _append(states, dataclasses.replace(
+                    _state(cn, x, delta, K, r, t, it, now - clock), landed=landed),
+                    at_same_delta=landed)
                 clock = now
-                if landed:
-                    states[-2] = dataclasses.replace(before, anchor_jump=before.anchor_jump + (
-                        states[-1].U + states[-1].Pi - before.U - before.Pi))
                 if progress is not None:
                     progress(states[-1])
                 ds = s.ds_first
@@ -550,11 +542,7 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
                 ended_by = f"the adhesion did not switch on at delta = {delta:.6g} R ({err})"
                 break
             timers.append(cn.timer)
-            before = states[-1]
-            states.append(_state(cn, x, delta, K, r, t, n, 0.0))
-            after = states[-1]
-            states[-2] = dataclasses.replace(before, anchor_jump=before.anchor_jump + (
-                after.U + after.Pi + after.E_gas - before.U - before.Pi - before.E_gas))
+            _append(states, _state(cn, x, delta, K, r, t, n, 0.0), at_same_delta=True)
             turn = len(states) - 1
             dz_max = min(dz_max, arc.dx_max * adhesion.delta_c, arc.dx_travel * delta_max)
             ds = min(ds, dz_max)
@@ -563,6 +551,17 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
         if it <= s.easy:
             ds *= s.grow
     return SnapPath(tuple(states), ended_by, _sum(timers), turn)
+
+
+def _append(states, after: SnapState, at_same_delta: bool):
+    """Append `after` to the path's states; `at_same_delta` (a jump or a law switched on,
+    reached from the last state at its delta without work of P): the energy it adds,
+    U + Pi + E_gas after minus before (< 0 dissipated), becomes that state's anchor_jump."""
+    before = states[-1]
+    states.append(after)
+    if at_same_delta:
+        states[-2] = dataclasses.replace(before, anchor_jump=before.anchor_jump + (
+            after.U + after.Pi + after.E_gas - before.U - before.Pi - before.E_gas))
 
 
 def _fold(states) -> int:

@@ -27,7 +27,7 @@ from shell_adhesion.solver.scaling import (check_C10, check_finite, check_R, for
                                            gamma_hat)
 from shell_adhesion.solver import maugis_dugdale as md
 from shell_adhesion.solver.cohesive import CohesiveLaw
-from shell_adhesion.solver.ring_adhesion import LIMIT_SCALE, adhesion_limit
+from shell_adhesion.solver.ring_adhesion import LIMIT_SCALE, adhesion_limit, around_dimple
 from shell_adhesion.solver.snap import SnapSettings, loading_cap, ring_arc, trace_loading
 
 from .cohesive_case import K_OVER_C10
@@ -306,7 +306,7 @@ def trace_snap(inp: SnapInput, progress=None) -> SnapResult:
     if inp.ring_adhesion is None:
         return SnapResult(inp, path, int(d.ndof))
     last = path.states[-1]
-    if path.ended_by or not (last.ring and last.apex_gap > settings.seal_lift * T):
+    if path.ended_by or not around_dimple(last, T, settings):
         why = (f"the loading stopped short ({path.ended_by})" if path.ended_by else
                f"the contact at delta_max is {last.contact_in(inp.R_mm)} (mm), not a ring "
                "around a dimple: press further")

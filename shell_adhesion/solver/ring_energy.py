@@ -1,0 +1,285 @@
+"""The energy method at a ring contact's two edges: G of each edge, and the adhesion a
+mirror-buckled ring survives, from zero-range adhesion.
+
+A ring state of a frictionless loading without adhesion (solver.snap, penalty contact)
+is turned into a held ring (its outer nodes below the plane held at z = 0, sliding in r,
+as a frictionless relaxation holds its contact zone: solver.path), and the ring is grown
+at fixed delta one element edge at a time, inward (the inner edge zips toward the apex,
+the dimple closes) or outward: each added outer node is pulled onto the plane in a few
+prescribed steps and held there.  Each ring ends on element corners at both edges
+(a ring ending on a midside node holds part of the next edge: G would oscillate).
+
+With held rings (j, k) (the pressed ring grown by j element edges inward and k outward),
+the strain energy U(j, k) and the covered area A = pi (r_out^2 - r_in^2) (deformed radii
+of the edge nodes) give each edge's energy release rate between neighbours,
+G = dU / dA at fixed delta (the energy it costs to hold one more element edge on the
+plane, per area).  Adhesion gamma moves an edge while that lowers F = U - gamma A: a
+discrete descent over (j, k) (`settle`) ends on the nearest local minimum, or with the
+ring closed (the inner edge at the apex: the dimple pulled flat).  The largest gamma whose
+descent ends on a ring around a lifted apex is gamma_c (`zip_limit`).  The adhesive edge
+force of a frictionless held set (solver.edge) is left out: G is first order.
+
+Dimensionless as the solver: lengths / R, energies / (C10 R^3), gamma and G / (C10 R),
+forces / (C10 R^2) (> 0 compression).
+"""
+from dataclasses import dataclass, field
+import math
+
+import numpy as np
+
+from shell_adhesion.errors import ConvergenceError
+from shell_adhesion.solver.contact import (constraints, contact_reactions, deformed_radius,
+                                           gaps, rim_load)
+from shell_adhesion.solver.forms import potential_energy
+from shell_adhesion.solver.linear import Timer
+from shell_adhesion.solver.path import Settings, _Problem, _release_tensile
+from shell_adhesion.solver.snap import SnapSettings, SnapState
+
+PULL_STEPS = 4        # prescribed steps that bring an added node onto the plane, each
+PULL_SHARE = 0.25     # at most this many thicknesses; where Newton fails, twice as many,
+PULL_RETRIES = 3      # at most this many times
+MAX_ROUNDS = 10       # `held_ring`: rounds of holding nodes that the released ones press on
+BISECTIONS = 40       # `zip_limit`: a bound the bisection never reaches (rel >= 1e-6)
+WIDEN_MAX = 4         # `zip_limit`: moves of a bracket whose ends are on one side
+
+
+@dataclass(frozen=True, eq=False)
+class HeldRing:
+    """An equilibrium at fixed delta with the outer nodes `held` (one run, indices into
+    CapMesh.outer) on the plane, sliding radially."""
+
+    delta: float
+    held: tuple
+    r_in: float              # deformed radius / R of the innermost held node
+    r_out: float             # and of the outermost
+    U: float                 # strain energy / (C10 R^3)
+    P: float                 # rim load / (C10 R^2), > 0 compression
+    apex_gap: float          # height / R of the apex above the plane
+    tension: float           # least z reaction on the held nodes (C10 R^2; < 0: pulled)
+    free_gap: float          # least height / R of the outer nodes not held (< 0: through
+    #                          the plane: contact the held set leaves out)
+    x: np.ndarray = field(repr=False, default=None)
+
+    @property
+    def A(self) -> float:
+        """The covered area / R^2, pi (r_out^2 - r_in^2) (pi r_out^2 for a disc)."""
+        return math.pi * (self.r_out ** 2 - self.r_in ** 2)
+
+    @property
+    def disc(self) -> bool:
+        return self.held[0] == 0
+
+
+@dataclass(frozen=True)
+class Settled:
+    """Where adhesion gamma takes a held ring (`settle`): the last ring, its (j, k) in
+    element edges grown inward and outward, and whether the dimple closed."""
+
+    gamma: float
+    ring: HeldRing
+    j: int
+    k: int
+    closed: bool
+    moves: int
+    why: str = ""            # how it closed where no ring past the last was found
+
+
+class RingLattice:
+    """The held rings (j, k) grown from one pressed ring, solved on demand and kept
+    (all at its delta; j, k >= 0 element edges inward and outward)."""
+
+    def __init__(self, d, start: SnapState, settings: Settings = Settings()):
+        self.d = d
+        self.pb = _Problem(d, "frictionless", settings, Timer())
+        self.corner = d.capmesh.outer_corner
+        self.solves = 0           # rings solved (each node pulled onto the plane)
+        ring = held_ring(d, start, self.pb)
+        # both edges on element corners: grow the edge that ends on a midside node
+        if not self.corner[ring.held[0]]:
+            ring = self._pull(ring, ring.held[0] - 1)
+        if not self.corner[ring.held[-1]]:
+            ring = self._pull(ring, ring.held[-1] + 1)
+        self.rings = {(0, 0): ring}
+
+    def __call__(self, j: int, k: int) -> HeldRing:
+        """The ring (j, k); ConvergenceError where it cannot be reached, ValueError where
+        it runs past the apex or the mesh's outer surface."""
+        if j < 0 or k < 0:
+            raise ValueError(f"ring ({j}, {k}): the pressed ring only grows (j, k >= 0)")
+        if (j, k) not in self.rings:
+            base = self(j, k - 1) if k > 0 else self(j - 1, 0)
+            step = 1 if k > 0 else -1
+            edge = base.held[-1] if k > 0 else base.held[0]
+            if not 0 <= edge + 2 * step < len(self.corner):
+                raise ValueError(f"ring ({j}, {k}): beyond the {'rim' if k else 'apex'}")
+            ring = self._pull(self._pull(base, edge + step), edge + 2 * step)
+            self.rings[(j, k)] = ring
+        return self.rings[(j, k)]
+
+    def _pull(self, ring: HeldRing, node: int) -> HeldRing:
+        """The ring with the outer node `node` pulled onto the plane and held."""
+        d, pb = self.d, self.pb
+        held = sorted((*ring.held, node))
+        c = constraints(d, "frictionless", held)
+        dof = d.uz(d.capmesh.outer[node])
+        z0 = float(gaps(d, ring.x, [node])[0])
+        steps = max(PULL_STEPS, math.ceil(z0 / (PULL_SHARE * d.capmesh.cap.t)))
+        for attempt in range(PULL_RETRIES + 1):
+            x = ring.x.copy()
+            try:
+                for _ in range(steps):
+                    x[dof] -= z0 / steps
+                    x, _, K, r, _ = pb.newton(c, x, ring.delta, None, pb.s.modified_newton)
+                break
+            except ConvergenceError as err:
+                if attempt == PULL_RETRIES:
+                    raise ConvergenceError(f"outer node {node} not pulled onto the plane in "
+                                           f"{steps} steps ({err})") from None
+                steps *= 2
+        self.solves += 1
+        return _held_state(d, x, ring.delta, r, held)
+
+    def G(self, a: tuple, b: tuple) -> float:
+        """dU/dA between the rings a and b = (j, k), neighbours (gamma / (C10 R))."""
+        ra, rb = self(*a), self(*b)
+        return (rb.U - ra.U) / (rb.A - ra.A)
+
+
+def held_ring(d, state: SnapState, pb=None) -> HeldRing:
+    """The penalty-contact ring `state` as a held ring at its delta: its outer nodes below
+    the plane held on it (one run, not touching the axis), re-equilibrated; nodes the
+    plane pulls are released and nodes that then press through it are held, for at most
+    MAX_ROUNDS rounds.  ValueError if the nodes below the plane are not one ring."""
+    pb = pb or _Problem(d, "frictionless", Settings(), Timer())
+    cm = d.capmesh
+    held = [int(i) for i in np.flatnonzero(gaps(d, state.x) <= 0.0)]
+    if not held or held[0] == 0 or held[-1] - held[0] + 1 != len(held):
+        raise ValueError(f"held_ring: the outer nodes below the plane ({held}) are not one "
+                         "ring around the apex")
+    x = state.x.copy()
+    for _ in range(MAX_ROUNDS):
+        x[d.uz(cm.outer[held])] = -cm.nodes[1, cm.outer[held]]
+        c = constraints(d, "frictionless", held)
+        x, _, K, r, hist = pb.newton(c, x, state.delta, None, pb.s.modified_newton)
+        x, K, r, held, c, _ = _release_tensile(pb, x, state.delta, K, r, held, c, hist)
+        held = [int(h) for h in held]
+        outside = np.setdiff1d(np.arange(len(cm.outer)), held)
+        through = outside[gaps(d, x, outside) < -pb.s.gap_tol]
+        if not len(through):
+            break
+        held = sorted(set(held) | set(int(i) for i in through))
+    else:
+        raise ConvergenceError(f"held_ring: the contact set did not settle in {MAX_ROUNDS} "
+                               "rounds")
+    if held[0] == 0 or held[-1] - held[0] + 1 != len(held):
+        raise ValueError(f"held_ring: the held contact ({held}) is not one ring")
+    return _held_state(d, x, state.delta, r, held)
+
+
+def _held_state(d, x, delta, r, held) -> HeldRing:
+    free = np.setdiff1d(np.arange(len(d.capmesh.outer)), held)
+    return HeldRing(delta, tuple(held), float(deformed_radius(d, x, held[0])),
+                    float(deformed_radius(d, x, held[-1])), potential_energy(d, x),
+                    rim_load(d, r), float(gaps(d, x, [0])[0]),
+                    float(contact_reactions(d, r, held).min()),
+                    float(gaps(d, x, free).min()), x)
+
+
+def settle(lattice: RingLattice, gamma: float, lift: float = None) -> Settled:
+    """Adhesion gamma switched on at the pressed ring: from (0, 0), move one edge by one
+    element edge (grow or shrink, never below the pressed ring) while that lowers
+    F = U - gamma A most, until no move does (a ring) or the ring closes: the held set
+    reaches the apex, a node it leaves free inside comes through the plane, or, after
+    the inner edge has passed the largest G of its moves inward (beyond it G falls
+    toward the apex, and falls as the outer edge grows: every move on lowers F, measured
+    on the meshes of the docs), a neighbouring ring has no equilibrium (the rest of the
+    dimple gives way).
+    `lift`: a ring whose apex is lifted by no more than this / R counts as closed
+    (default SnapSettings.seal_lift t).  At most 4 moves per outer node.  Any other
+    neighbour that cannot be solved raises ConvergenceError (naming it): the descent
+    cannot say where it would go."""
+    if not (math.isfinite(gamma) and gamma >= 0):
+        raise ValueError(f"settle: gamma {gamma!r} must be a finite number >= 0")
+    lift = SnapSettings().seal_lift * lattice.d.capmesh.cap.t if lift is None else lift
+    gap_tol = lattice.pb.s.gap_tol
+    F = lambda jk: lattice(*jk).U - gamma * lattice(*jk).A
+    jk, moves = (0, 0), 0
+    G_top = G_last = 0.0        # of the moves inward so far: the largest G, the last
+    for moves in range(4 * len(lattice.corner)):
+        j, k = jk
+        best, best_F = None, F(jk)
+        for nb in ((j + 1, k), (j, k + 1), (j - 1, k), (j, k - 1)):
+            if min(nb) < 0:
+                continue
+            try:
+                f = F(nb)
+            except ValueError:          # past the apex: the dimple is closed
+                return Settled(gamma, lattice(*jk), j, k, True, moves)
+            except ConvergenceError as err:
+                if G_last < G_top:
+                    return Settled(gamma, lattice(*jk), j, k, True, moves,
+                                   f"no held ring {nb} after the inner edge passed its "
+                                   "largest G")
+                raise ConvergenceError(f"settle at gamma {gamma:g}: the ring grown {nb[0]} "
+                                       f"element edges inward and {nb[1]} outward was not "
+                                       f"found ({err})") from None
+            if f < best_F - 1e-12 * abs(best_F):
+                best, best_F = nb, f
+        if best is None:
+            break
+        if best[0] > j:
+            G_last = lattice.G(jk, best)
+            G_top = max(G_top, G_last)
+        jk = best
+        if lattice(*jk).free_gap < -gap_tol:
+            break               # the dimple came down onto the plane inside the ring
+    ring = lattice(*jk)
+    closed = ring.disc or ring.apex_gap <= lift or ring.free_gap < -gap_tol
+    return Settled(gamma, ring, *jk, closed, moves)
+
+
+def zip_limit(lattice: RingLattice, gamma_lo: float, gamma_hi: float,
+              rel: float = 0.01, widen: float = None) -> tuple:
+    """Bracket gamma_c, the largest gamma at which `settle` ends on a ring (not closed),
+    by bisection between gamma_lo (must hold) and gamma_hi (must close) until
+    gamma_hi / gamma_lo <= 1 + rel.  `widen` (> 1): where an end is on the wrong side,
+    the bracket moves by that factor (at most WIDEN_MAX times) instead.  Returns (lo, hi)
+    as Settled results."""
+    if not (0 < gamma_lo < gamma_hi and 1e-6 <= rel and (widen is None or widen > 1)):
+        raise ValueError(f"zip_limit: need 0 < gamma_lo ({gamma_lo!r}) < gamma_hi "
+                         f"({gamma_hi!r}), rel ({rel!r}) >= 1e-6 and widen ({widen!r}) > 1")
+    lo, hi = settle(lattice, gamma_lo), settle(lattice, gamma_hi)
+    for _ in range(WIDEN_MAX if widen else 0):
+        if lo.closed:
+            lo, hi = settle(lattice, lo.gamma / widen), lo
+        elif not hi.closed:
+            lo, hi = hi, settle(lattice, hi.gamma * widen)
+    if lo.closed:
+        raise ValueError(f"zip_limit: the ring closes at gamma_lo = {lo.gamma:g}")
+    if not hi.closed:
+        raise ValueError(f"zip_limit: the ring still holds at gamma_hi = {hi.gamma:g}")
+    for _ in range(BISECTIONS):
+        if hi.gamma <= lo.gamma * (1 + rel):
+            break
+        mid = settle(lattice, math.sqrt(lo.gamma * hi.gamma))
+        lo, hi = (lo, mid) if mid.closed else (mid, hi)
+    return lo, hi
+
+
+def release_rates(lattice: RingLattice, side: str, edges: int, other: int = 0) -> tuple:
+    """(radius, G) of one edge grown by 1..`edges` element edges with the other edge
+    grown by `other`: the edge's radius / R midway and dU/dA over each element edge
+    (stops early, with what it has, at the apex or the mesh's end)."""
+    if side not in ("in", "out"):
+        raise ValueError(f"release_rates: side {side!r} must be 'in' or 'out'")
+    at = (lambda n: (n, other)) if side == "in" else (lambda n: (other, n))
+    radius, G = [], []
+    for n in range(edges):
+        try:
+            a, b = lattice(*at(n)), lattice(*at(n + 1))
+        except ValueError:
+            break
+        edge = "r_in" if side == "in" else "r_out"
+        radius.append(0.5 * (getattr(a, edge) + getattr(b, edge)))
+        G.append((b.U - a.U) / (b.A - a.A))
+    return np.array(radius), np.array(G)

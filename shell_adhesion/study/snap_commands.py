@@ -5,7 +5,7 @@ optionally pulled back with the pocket under its dimple vented or sealed
     shell-adhesion snap --R 20 --t 0.4 --h 20 --C10 0.3 [--delta-max 4] [--unload-to -0.4]
         [--pocket vented|sealed] [--seal turn|ring] [--gas-exponent 1] [--p-atm-kPa 101.325]
         [--interface frictionless|no_slip] [--stick turn|touch] [--mesh coarse]
-        [--ring-adhesion LAMBDA] [--json] [--csv FILE] [--plot FILE]
+        [--ring-adhesion LAMBDA|zero] [--json] [--csv FILE] [--plot FILE]
 
 Prints the jumps under displacement control (from which state to which), the first ring,
 the states (every state whose contact set changes shape and about 30 more), the pocket's
@@ -77,11 +77,13 @@ def add_parser(sub, one_dash):
                    help="the contact penalty's onset: soft (default, 1e-4 R: the snap is "
                         "passed by folds and comes early) or sharp (3e-6 R: the shell jumps "
                         "where it loses stability; slower)")
-    s.add_argument("--ring-adhesion", dest="ring_adhesion", default=None, metavar="LAMBDA",
+    s.add_argument("--ring-adhesion", dest="ring_adhesion", default=None,
+                   metavar="LAMBDA|zero",
                    help="after the loading (vented, frictionless), bracket the largest "
                         "adhesion gamma [J/m^2] the ring at delta-max survives (smoothed "
-                        "Dugdale law of Tabor parameter LAMBDA, e.g. 0.3; a few minutes); "
-                        "above it the dimple closes")
+                        "Dugdale law of Tabor parameter LAMBDA, e.g. 0.3, a few minutes; "
+                        "or zero: zero-range adhesion by the energy method at the ring's "
+                        "two edges, faster); above it the dimple closes")
     s.add_argument("--gamma", default=None, help=argparse.SUPPRESS)
     s.add_argument("--json", action="store_true", help="print JSON (every state) instead of text")
     s.add_argument("--csv", default=None, metavar="FILE", help="write every state as CSV")
@@ -95,6 +97,15 @@ def run(ns) -> int:
         raise InputError(f"--gamma: {ns.gamma} is not an input of snap: it presses without "
                          "adhesion (gamma = 0); `case --adhesion dugdale --interface "
                          "frictionless` follows an adhesive shell from its first touch")
+    zero = ns.ring_adhesion is not None and ns.ring_adhesion.strip().lower() == "zero"
+    if zero:
+        ns.ring_adhesion = None
+    elif ns.ring_adhesion is not None:
+        try:
+            float(ns.ring_adhesion)
+        except ValueError:
+            raise InputError(f"--ring-adhesion: {ns.ring_adhesion!r} must be a Tabor "
+                             "parameter (a number > 0) or zero") from None
     numbers = {k: None if getattr(ns, a) is None else number(FLAGS[k], getattr(ns, a), u)
                for k, a, u in (
         ("R_mm", "R", "mm"), ("t_mm", "t", "mm"), ("h_mm", "h", "mm"),
@@ -103,6 +114,8 @@ def run(ns) -> int:
         ("p_atm_kPa", "p_atm_kPa", "kPa"), ("ring_adhesion", "ring_adhesion", "1"))}
     if numbers["p_atm_kPa"] is None:
         del numbers["p_atm_kPa"]
+    if zero:
+        numbers["ring_adhesion"] = thin_shell.ZERO_RANGE
     inp = thin_shell.snap_input(**numbers, pocket=ns.pocket, seal=ns.seal,
                                 interface=ns.interface, stick=ns.stick, mesh=ns.mesh,
                                 contact=ns.contact, names=FLAGS)
@@ -208,7 +221,9 @@ def report(result) -> str:
                      f"{pk['ideal_suction_N']:.4g} N)")
     ring = out["ring_adhesion"]
     if ring and ring["bracketed"]:
-        lines.append(f"adhesion the ring survives (smoothed Dugdale, Tabor {ring['tabor']:g}): "
+        law = (f"smoothed Dugdale, Tabor {ring['tabor']:g}" if ring["tabor"] is not None
+               else ring["law"])
+        lines.append(f"adhesion the ring survives ({law}): "
                      f"gamma_c {ring['gamma_lo_J_m2']:.4g} to {ring['gamma_hi_J_m2']:.4g} J/m^2 "
                      f"(gamma/(C10 R) {ring['gamma_lo']:.4g} to {ring['gamma_hi']:.4g}) at "
                      f"delta {ring['delta_mm']:.4g} mm; below it the ring widens (to "

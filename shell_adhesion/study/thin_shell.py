@@ -7,7 +7,8 @@ compression), radii in mm, the pocket's volume in mm^3 and its gauge pressure in
 (> 0 pushes the shell off the plane).  Frictionless or sticking contact, no adhesion
 (gamma = 0): adhesion switched on after the snap pulls the dimple flat
 (docs/thin-shells.md) above a limit; `ring_adhesion` (a Tabor parameter) brackets that
-limit, gamma_c in J/m^2, at the ring the loading ends on (solver.ring_adhesion).
+limit, gamma_c in J/m^2, at the ring the loading ends on (solver.ring_adhesion), or, as
+ZERO_RANGE, by the energy method at the ring's two edges (solver.ring_energy).
 """
 from dataclasses import dataclass
 import dataclasses
@@ -16,7 +17,7 @@ import math
 
 import numpy as np
 
-from shell_adhesion.errors import InputError
+from shell_adhesion.errors import ConvergenceError, InputError
 from shell_adhesion.solver import pocket as pk
 from shell_adhesion.solver.cavity import P_ATM_KPA
 from shell_adhesion.solver.contact import INTERFACES
@@ -28,6 +29,7 @@ from shell_adhesion.solver.scaling import (check_C10, check_finite, check_R, for
 from shell_adhesion.solver import maugis_dugdale as md
 from shell_adhesion.solver.cohesive import CohesiveLaw
 from shell_adhesion.solver.ring_adhesion import LIMIT_SCALE, adhesion_limit, around_dimple
+from shell_adhesion.solver.ring_energy import RingLattice, zip_limit
 from shell_adhesion.solver.snap import SnapSettings, loading_cap, ring_arc, trace_loading
 
 from .cohesive_case import K_OVER_C10
@@ -51,6 +53,7 @@ API_NAMES = dict(R_mm="R_mm", t_mm="t_mm", h_mm="h_mm", C10_MPa="C10_MPa",
                  interface="interface", stick="stick", mesh="mesh", contact="contact",
                  ring_adhesion="ring_adhesion")
 RING_REL = 0.05                    # the bracket of gamma_c: its ends this far apart
+ZERO_RANGE = math.inf              # ring_adhesion: zero-range adhesion (the energy method)
 
 
 @dataclass(frozen=True)
@@ -72,6 +75,7 @@ class SnapInput:
     mesh: str
     contact: str = "soft"
     ring_adhesion: float = None    # a Tabor parameter: bracket gamma_c at the last ring
+    #                                (ZERO_RANGE: by the energy method)
 
     @property
     def p_atm_over_C10(self) -> float:
@@ -130,7 +134,8 @@ def snap_input(R_mm, t_mm, h_mm, C10_MPa, delta_max_mm=None, unload_to_mm=None,
     if not p_atm_kPa > 0:
         raise InputError(f"{n['p_atm_kPa']}: {p_atm_kPa:g} must be > 0 (kPa)")
     if ring_adhesion is not None:
-        ring_adhesion = check_finite(ring_adhesion, n["ring_adhesion"])
+        if ring_adhesion != ZERO_RANGE:
+            ring_adhesion = check_finite(ring_adhesion, n["ring_adhesion"])
         if not ring_adhesion > 0:
             raise InputError(f"{n['ring_adhesion']}: {ring_adhesion:g} must be > 0 (the "
                              "Tabor parameter of the adhesion law)")
@@ -152,6 +157,7 @@ class SnapResult:
     path: object                   # solver.snap.SnapPath (dimensionless)
     ndof: int
     ring_limit: tuple = None       # (lo, hi) solver.ring_adhesion.RingAdhesion results
+    #                                (zero range: solver.ring_energy.Settled)
     ring_why: str = ""             # why ring_adhesion was asked and not bracketed
 
     def mm(self, v):
@@ -247,15 +253,20 @@ class SnapResult:
         if self.input.ring_adhesion is None:
             return None
         if self.ring_limit is None:
-            return dict(tabor=self.input.ring_adhesion, bracketed=False, why=self.ring_why)
+            return dict(tabor=(None if self.input.ring_adhesion == ZERO_RANGE
+                           else self.input.ring_adhesion), bracketed=False, why=self.ring_why)
         lo, hi = self.ring_limit
         last = self.path.states[-1]
-        return dict(tabor=self.input.ring_adhesion, bracketed=True,
+        zero = self.input.ring_adhesion == ZERO_RANGE
+        at_lo = (f"ring {self.mm(lo.ring.r_in):.4g}-{self.mm(lo.ring.r_out):.4g}" if zero
+                 else lo.state.contact_in(self.input.R_mm))
+        return dict(tabor=None if zero else self.input.ring_adhesion,
+                    law="zero range, energy method" if zero else "smoothed Dugdale",
+                    bracketed=True,
                     gamma_lo_J_m2=self.gamma_J_m2(lo.gamma),
                     gamma_hi_J_m2=self.gamma_J_m2(hi.gamma), gamma_lo=lo.gamma,
                     gamma_hi=hi.gamma, delta_mm=self.mm(last.delta),
-                    ring=last.contact_in(self.input.R_mm),
-                    ring_at_lo=lo.state.contact_in(self.input.R_mm))
+                    ring=last.contact_in(self.input.R_mm), ring_at_lo=at_lo)
 
     def to_dict(self) -> dict:
         s = self.path.states
@@ -317,9 +328,13 @@ def trace_snap(inp: SnapInput, progress=None) -> SnapResult:
 
     guess = LIMIT_SCALE * T * last.delta ** 2
     try:
-        limit = adhesion_limit(d, last, law_of, guess / 2, guess * 2, RING_REL,
-                               settings=settings, widen=4.0)
-    except ValueError as err:
+        if inp.ring_adhesion == ZERO_RANGE:
+            limit = zip_limit(RingLattice(d, last), guess / 2, 1.3 * guess, RING_REL / 5,
+                              widen=1.3)
+        else:
+            limit = adhesion_limit(d, last, law_of, guess / 2, guess * 2, RING_REL,
+                                   settings=settings, widen=4.0)
+    except (ValueError, ConvergenceError) as err:
         return SnapResult(inp, path, int(d.ndof), None, str(err))
     return SnapResult(inp, path, int(d.ndof), limit)
 

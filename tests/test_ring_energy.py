@@ -19,9 +19,15 @@ import pytest
 from shell_adhesion.solver import maugis_dugdale as md
 from shell_adhesion.solver.cohesive import CohesiveLaw
 from shell_adhesion.solver.ring_adhesion import ring_holds
+import dataclasses
+
+from shell_adhesion.solver import pocket as pk
+from shell_adhesion.solver.forms import discretise
+from shell_adhesion.solver.mesh import cap_mesh, mesh_spec
 from shell_adhesion.solver.ring_energy import (RingLattice, held_ring, release_rates, settle,
-                                               zip_limit)
-from shell_adhesion.solver.snap import trace_shell
+                                               unload, zip_limit)
+from shell_adhesion.solver.snap import (SnapSettings, loading_cap, ring_arc, trace_loading,
+                                        trace_shell)
 
 T, DELTA = 0.02, 0.1
 
@@ -89,6 +95,42 @@ def test_the_bisection_brackets_the_zero_range_limit(coarser):
         zip_limit(lattice, 1e-6, 2e-6)
     with pytest.raises(ValueError, match="gamma"):
         settle(lattice, -1.0)
+
+
+def test_an_unloading_ring_closes_its_dimple_where_its_limit_falls_to_gamma(coarser):
+    """Unloaded from 5 t at gamma 2e-5 C10 R (half the limit at 5 t), both edges free
+    (`unload`): the ring moves inward with the rim, P stays compressive, and the dimple
+    closes where the limit along the ring branch falls to gamma, 3.69 t interpolated
+    (docs/thin-shells.md; the finite-range unloading closes it at 3.66 t).  Measured on
+    this mesh in steps of 0.1 t: closed at 3.64 t (coarse: 3.61 t; in steps of 0.05 t
+    3.66 t)."""
+    d, pressed, _ = coarser
+    u = unload(d, pressed, 2e-5, -2 * T, 0.1 * T)
+    assert u.ended_by.startswith("closed at delta")
+    delta = u.array("delta")
+    assert np.all(np.diff(delta) < 0) and 3.5 * T < delta[-1] < 3.8 * T
+    assert np.all(u.array("P") > 0) and u.P_star > 0
+    r_in = u.array("r_in")
+    assert r_in[-2] < r_in[0] - 0.05 and u.rings[-2].apex_gap > 2 * T
+    with pytest.raises(ValueError, match="delta_end"):
+        unload(d, pressed, 2e-5, 1.0, 0.1 * T)
+
+
+def test_a_sealed_pocket_keeps_the_dimple_open():
+    """The pocket under the dimple sealed at ambient pressure at the press (101.325 kPa
+    against C10 0.3 MPa): zipping the inner edge compresses the gas, so its G grows
+    without a maximum (measured on the coarser mesh: 2.6e-3 C10 R at 0.27 R, 9.8e-3 at
+    0.22 R, against the vented maximum of 4.35e-5), and adhesion four times the vented
+    limit leaves a ring (0.347-0.446 R, the gas at +2.5e-3 C10)."""
+    d = pk.bind(discretise(cap_mesh(loading_cap(T, 1.0), mesh_spec("coarser", ring_arc(DELTA)))),
+                pk.Pocket("sealed", pk.p_atm_over_C10(101.325, 300.0), 1.0))
+    path = trace_loading(d, DELTA, dataclasses.replace(SnapSettings(), seal_at_turn=True))
+    d = pk.seal(d, path.states[-1].x)
+    lattice = RingLattice(d, path.states[-1])
+    _, G = release_rates(lattice, "in", 10)
+    assert len(G) == 10 and np.all(np.diff(G) > 0) and G[-1] > 100 * 4.35e-5
+    s = settle(lattice, 4 * 4.1e-5)
+    assert not s.closed and s.ring.apex_gap > 3 * T and s.ring.x[-1] > 1e-3
 
 
 def test_a_state_that_is_not_one_ring_is_refused():

@@ -2,7 +2,7 @@
 mirror-buckled ring survives, from zero-range adhesion.
 
 A ring state of a frictionless loading without adhesion (solver.snap, penalty contact)
-is turned into a held ring (its outer nodes below the plane held at z = 0, sliding in r,
+is turned into a held ring (its outer nodes below the plane held on it, sliding in r,
 as a frictionless relaxation holds its contact zone: solver.path), and the ring is grown
 at fixed delta one element edge at a time, inward (the inner edge zips toward the apex,
 the dimple closes) or outward: each added outer node is pulled onto the plane in a few
@@ -41,6 +41,10 @@ PULL_RETRIES = 3      # at most this many times
 MAX_ROUNDS = 10       # `held_ring`: rounds of holding nodes that the released ones press on
 BISECTIONS = 40       # `zip_limit`: a bound the bisection never reaches (rel >= 1e-6)
 WIDEN_MAX = 4         # `zip_limit`: moves of a bracket whose ends are on one side
+# held nodes sit this far (/ R) below the plane, so that where the surface crosses it (a
+# sealed pocket's seal: solver.pocket) is inside the element edge next to the held ring,
+# not on its end node; the energy it adds is below the solver's tolerance
+HOLD_DEPTH = 1e-10
 
 
 @dataclass(frozen=True, eq=False)
@@ -81,40 +85,84 @@ class Settled:
     k: int
     closed: bool
     moves: int
-    why: str = ""            # how it closed where no ring past the last was found
+    why: str = ""            # how it closed where no ring past the last was found, or
+    #                          how it detached
+    detached: bool = False   # the ring let go of the plane (its last ring is `ring`)
+
+
+class Beyond(ValueError):
+    """A ring grown past the apex or the mesh's last outer node."""
+
+
+class Detached(ValueError):
+    """A ring shrunk to nothing: the shell has left the plane."""
+
+
+class Inadmissible(ValueError):
+    """A ring shrunk where the released nodes would press through the plane."""
 
 
 class RingLattice:
-    """The held rings (j, k) grown from one pressed ring, solved on demand and kept
-    (all at its delta; j, k >= 0 element edges inward and outward)."""
+    """The held rings (j, k) grown from one held ring, (0, 0), solved on demand and kept
+    (all at its delta; j, k element edges inward and outward, >= 0, or, with `shrink`,
+    also < 0: element edges released at that edge).
 
-    def __init__(self, d, start: SnapState, settings: Settings = Settings()):
+    `start`: a ring state of a loading (solver.snap, turned into a held ring on element
+    corners by `held_ring`) or a HeldRing on element corners."""
+
+    def __init__(self, d, start, settings: Settings = Settings(), shrink: bool = False):
         self.d = d
         self.pb = _Problem(d, "frictionless", settings, Timer())
         self.corner = d.capmesh.outer_corner
-        self.solves = 0           # rings solved (each node pulled onto the plane)
-        ring = held_ring(d, start, self.pb)
-        # both edges on element corners: grow the edge that ends on a midside node
-        if not self.corner[ring.held[0]]:
-            ring = self._pull(ring, ring.held[0] - 1)
-        if not self.corner[ring.held[-1]]:
-            ring = self._pull(ring, ring.held[-1] + 1)
+        self.shrink = shrink
+        self.solves = 0           # rings solved (each node pulled onto the plane or let go)
+        if isinstance(start, HeldRing):
+            ring = start
+            if not (self.corner[ring.held[0]] and self.corner[ring.held[-1]]):
+                raise ValueError(f"RingLattice: the held ring {ring.held[0]}-{ring.held[-1]} "
+                                 "does not end on element corners")
+        else:
+            ring = held_ring(d, start, self.pb)
+            # both edges on element corners: grow the edge that ends on a midside node
+            if not self.corner[ring.held[0]]:
+                ring = self._pull(ring, ring.held[0] - 1)
+            if not self.corner[ring.held[-1]]:
+                ring = self._pull(ring, ring.held[-1] + 1)
         self.rings = {(0, 0): ring}
 
     def __call__(self, j: int, k: int) -> HeldRing:
-        """The ring (j, k); ConvergenceError where it cannot be reached, ValueError where
-        it runs past the apex or the mesh's outer surface."""
-        if j < 0 or k < 0:
-            raise ValueError(f"ring ({j}, {k}): the pressed ring only grows (j, k >= 0)")
+        """The ring (j, k); ConvergenceError where it cannot be reached, Beyond where it
+        runs past the apex or the mesh's outer surface, Detached where it shrinks to
+        nothing, Inadmissible where a node it lets go would press through the plane."""
+        if not self.shrink and (j < 0 or k < 0):
+            raise ValueError(f"ring ({j}, {k}): this lattice only grows (j, k >= 0)")
         if (j, k) not in self.rings:
-            base = self(j, k - 1) if k > 0 else self(j - 1, 0)
-            step = 1 if k > 0 else -1
-            edge = base.held[-1] if k > 0 else base.held[0]
-            if not 0 <= edge + 2 * step < len(self.corner):
-                raise ValueError(f"ring ({j}, {k}): beyond the {'rim' if k else 'apex'}")
-            ring = self._pull(self._pull(base, edge + step), edge + 2 * step)
+            outward = k != 0
+            n = k if outward else j
+            base = self(j, k - (1 if k > 0 else -1)) if outward else self(j - (1 if j > 0 else -1), 0)
+            if n > 0:
+                edge, step = (base.held[-1], 1) if outward else (base.held[0], -1)
+                if not 0 <= edge + 2 * step < len(self.corner):
+                    raise Beyond(f"ring ({j}, {k}): beyond the {'rim' if outward else 'apex'}")
+                ring = self._pull(self._pull(base, edge + step), edge + 2 * step)
+            else:
+                if len(base.held) < 3:
+                    raise Detached(f"ring ({j}, {k}): nothing left to hold")
+                let_go = base.held[-2:] if outward else base.held[:2]
+                ring = self._release(base, let_go)
             self.rings[(j, k)] = ring
         return self.rings[(j, k)]
+
+    def _release(self, ring: HeldRing, nodes) -> HeldRing:
+        """The ring with the outer nodes `nodes` (at one edge) let go."""
+        d, pb = self.d, self.pb
+        held = [h for h in ring.held if h not in set(nodes)]
+        c = constraints(d, "frictionless", held)
+        x, _, K, r, _ = pb.newton(c, ring.x.copy(), ring.delta, None, pb.s.modified_newton)
+        if gaps(d, x, list(nodes)).min() < -pb.s.gap_tol:
+            raise Inadmissible(f"outer nodes {list(nodes)} let go press through the plane")
+        self.solves += 1
+        return _held_state(d, x, ring.delta, r, held)
 
     def _pull(self, ring: HeldRing, node: int) -> HeldRing:
         """The ring with the outer node `node` pulled onto the plane and held."""
@@ -122,7 +170,7 @@ class RingLattice:
         held = sorted((*ring.held, node))
         c = constraints(d, "frictionless", held)
         dof = d.uz(d.capmesh.outer[node])
-        z0 = float(gaps(d, ring.x, [node])[0])
+        z0 = float(gaps(d, ring.x, [node])[0]) + HOLD_DEPTH
         steps = max(PULL_STEPS, math.ceil(z0 / (PULL_SHARE * d.capmesh.cap.t)))
         for attempt in range(PULL_RETRIES + 1):
             x = ring.x.copy()
@@ -158,7 +206,7 @@ def held_ring(d, state: SnapState, pb=None) -> HeldRing:
                          "ring around the apex")
     x = state.x.copy()
     for _ in range(MAX_ROUNDS):
-        x[d.uz(cm.outer[held])] = -cm.nodes[1, cm.outer[held]]
+        x[d.uz(cm.outer[held])] = -cm.nodes[1, cm.outer[held]] - HOLD_DEPTH
         c = constraints(d, "frictionless", held)
         x, _, K, r, hist = pb.newton(c, x, state.delta, None, pb.s.modified_newton)
         x, K, r, held, c, _ = _release_tensile(pb, x, state.delta, K, r, held, c, hist)
@@ -186,14 +234,18 @@ def _held_state(d, x, delta, r, held) -> HeldRing:
 
 
 def settle(lattice: RingLattice, gamma: float, lift: float = None) -> Settled:
-    """Adhesion gamma switched on at the pressed ring: from (0, 0), move one edge by one
-    element edge (grow or shrink, never below the pressed ring) while that lowers
-    F = U - gamma A most, until no move does (a ring) or the ring closes: the held set
-    reaches the apex, a node it leaves free inside comes through the plane, or, after
-    the inner edge has passed the largest G of its moves inward (beyond it G falls
-    toward the apex, and falls as the outer edge grows: every move on lowers F, measured
-    on the meshes of the docs), a neighbouring ring has no equilibrium (the rest of the
-    dimple gives way).
+    """Adhesion gamma switched on at the lattice's ring (0, 0): move one edge by one
+    element edge (grow it, or shrink it: below (0, 0) only with the lattice's `shrink`)
+    while that lowers F = U - gamma A most, until no move does (a ring) or:
+
+    - the ring closes: the held set reaches the apex, a node it leaves free inside comes
+      through the plane, or, after the inner edge has passed the largest G of its moves
+      inward (beyond it G falls toward the apex, and falls as the outer edge grows: every
+      move on lowers F, measured on the meshes of the docs), a neighbouring ring has no
+      equilibrium (the rest of the dimple gives way);
+    - the ring detaches (`shrink`, delta <= 0): letting go of its last element edge lowers
+      F to that of the shell off the plane, 0 (the gas of a sealed pocket escapes).
+
     `lift`: a ring whose apex is lifted by no more than this / R counts as closed
     (default SnapSettings.seal_lift t).  At most 4 moves per outer node.  Any other
     neighbour that cannot be solved raises ConvergenceError (naming it): the descent
@@ -202,6 +254,7 @@ def settle(lattice: RingLattice, gamma: float, lift: float = None) -> Settled:
         raise ValueError(f"settle: gamma {gamma!r} must be a finite number >= 0")
     lift = SnapSettings().seal_lift * lattice.d.capmesh.cap.t if lift is None else lift
     gap_tol = lattice.pb.s.gap_tol
+    off_plane = lattice(0, 0).delta <= 0
     F = lambda jk: lattice(*jk).U - gamma * lattice(*jk).A
     jk, moves = (0, 0), 0
     G_top = G_last = 0.0        # of the moves inward so far: the largest G, the last
@@ -209,12 +262,20 @@ def settle(lattice: RingLattice, gamma: float, lift: float = None) -> Settled:
         j, k = jk
         best, best_F = None, F(jk)
         for nb in ((j + 1, k), (j, k + 1), (j - 1, k), (j, k - 1)):
-            if min(nb) < 0:
+            if min(nb) < 0 and not lattice.shrink:
                 continue
             try:
                 f = F(nb)
-            except ValueError:          # past the apex: the dimple is closed
-                return Settled(gamma, lattice(*jk), j, k, True, moves)
+            except Beyond:
+                if nb[0] > j:           # past the apex: the dimple is closed
+                    return Settled(gamma, lattice(*jk), j, k, True, moves)
+                continue
+            except Detached:
+                if not off_plane:
+                    continue
+                f, nb = 0.0, None
+            except Inadmissible:
+                continue
             except ConvergenceError as err:
                 if G_last < G_top:
                     return Settled(gamma, lattice(*jk), j, k, True, moves,
@@ -225,6 +286,10 @@ def settle(lattice: RingLattice, gamma: float, lift: float = None) -> Settled:
                                        f"found ({err})") from None
             if f < best_F - 1e-12 * abs(best_F):
                 best, best_F = nb, f
+                if nb is None:
+                    return Settled(gamma, lattice(*jk), j, k, False, moves + 1,
+                                   "detached: letting go of the last element edge lowers F",
+                                   detached=True)
         if best is None:
             break
         if best[0] > j:
@@ -283,3 +348,74 @@ def release_rates(lattice: RingLattice, side: str, edges: int, other: int = 0) -
         radius.append(0.5 * (getattr(a, edge) + getattr(b, edge)))
         G.append((b.U - a.U) / (b.A - a.A))
     return np.array(radius), np.array(G)
+
+
+MOVE_HALVINGS = 6     # `unload`: a rim move that Newton cannot make is halved this often
+
+
+@dataclass(frozen=True)
+class Unloading:
+    """`unload`'s path: the settled ring at each delta (the first at the start's delta),
+    why it ended, and its least P (the pull-off under displacement control, where the
+    ring detached or closed after it)."""
+
+    gamma: float
+    rings: tuple
+    ended_by: str
+
+    @property
+    def P_star(self) -> float:
+        return min(r.P for r in self.rings)
+
+    def array(self, name):
+        return np.array([getattr(r, name) for r in self.rings])
+
+
+def unload(d, start, gamma: float, delta_end: float, step: float,
+           settings: Settings = Settings()) -> Unloading:
+    """Raise the rim from the ring state `start` (a loading state, as RingLattice) to
+    delta_end / R in steps of `step` / R, with adhesion gamma by the energy method: at the
+    start and after each rim move (the held ring kept, as a relaxation), `settle` moves
+    both edges (grow or shrink).  Ends at delta_end, or where the ring detaches (delta
+    <= 0) or closes (the dimple pulled flat: the contact is no longer a ring; not
+    followed further), or shrinks to one node at delta > 0 (letting it go there would
+    need the shell off the plane, not built), or where a rim move fails after
+    MOVE_HALVINGS halvings (ConvergenceError's text).  A discretisation bound to a
+    sealed pocket (solver.pocket.seal) carries its gas."""
+    if not (math.isfinite(delta_end) and delta_end < start.delta and step > 0):
+        raise ValueError(f"unload: need delta_end ({delta_end!r}) < the start's delta "
+                         f"({start.delta:g}) and step ({step!r}) > 0")
+    lattice = RingLattice(d, start, settings)
+    s = settle(lattice, gamma)
+    rings, pb = [s.ring], lattice.pb
+    if s.closed:
+        return Unloading(gamma, tuple(rings), "closed at the start: " + (s.why or "the "
+                                                                           "dimple closed"))
+    ring = s.ring
+    while ring.delta > delta_end:
+        c = constraints(d, "frictionless", list(ring.held))
+        h = min(step, ring.delta - delta_end)
+        for _ in range(MOVE_HALVINGS + 1):
+            try:
+                x, _, K, r, _ = pb.newton(c, ring.x.copy(), ring.delta - h, None,
+                                          pb.s.modified_newton)
+                break
+            except ConvergenceError as err:
+                why = str(err)
+                h /= 2
+        else:
+            return Unloading(gamma, tuple(rings), f"the rim move from delta "
+                             f"{ring.delta:.6g} R failed ({why})")
+        moved = _held_state(d, x, ring.delta - h, r, list(ring.held))
+        s = settle(RingLattice(d, moved, settings, shrink=True), gamma)
+        rings.append(s.ring)
+        if s.detached or s.closed:
+            return Unloading(gamma, tuple(rings), ("detached" if s.detached else "closed")
+                             + f" at delta {s.ring.delta:.6g} R" + (f" ({s.why})" if s.why
+                                                                   else ""))
+        if len(s.ring.held) < 3 and s.ring.delta > 0:
+            return Unloading(gamma, tuple(rings), f"the ring shrank to one node at delta "
+                             f"{s.ring.delta:.6g} R > 0, where letting it go is not built "
+                             "(the shell off the plane there)")
+        ring = s.ring
+    return Unloading(gamma, tuple(rings), "")

@@ -16,8 +16,11 @@ G = dU / dA at fixed delta (the energy it costs to hold one more element edge on
 plane, per area).  Adhesion gamma moves an edge while that lowers F = U - gamma A: a
 discrete descent over (j, k) (`settle`) ends on the nearest local minimum, or with the
 ring closed (the inner edge at the apex: the dimple pulled flat).  The largest gamma whose
-descent ends on a ring around a lifted apex is gamma_c (`zip_limit`).  The adhesive edge
-force of a frictionless held set (solver.edge) is left out: G is first order.
+descent ends on a ring around a lifted apex is gamma_c (`zip_limit`).  `unload` raises
+the rim with the held ring kept and lets both edges settle after each step (growing or,
+`RingLattice(shrink=True)`, letting element edges go).  A discretisation bound to a
+sealed pocket (solver.pocket) adds the gas's energy to U.  The adhesive edge force of a
+frictionless held set (solver.edge) is left out: G is first order.
 
 Dimensionless as the solver: lengths / R, energies / (C10 R^3), gamma and G / (C10 R),
 forces / (C10 R^2) (> 0 compression).
@@ -56,7 +59,7 @@ class HeldRing:
     held: tuple
     r_in: float              # deformed radius / R of the innermost held node
     r_out: float             # and of the outermost
-    U: float                 # strain energy / (C10 R^3)
+    U: float                 # strain energy / (C10 R^3), with a sealed pocket's gas energy
     P: float                 # rim load / (C10 R^2), > 0 compression
     apex_gap: float          # height / R of the apex above the plane
     tension: float           # least z reaction on the held nodes (C10 R^2; < 0: pulled)

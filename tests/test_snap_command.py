@@ -28,7 +28,8 @@ SHELL = ["--R", "20", "--h", "20", "--C10", "0.3"]
     (["--t", "abc"], "--t: 'abc' must be a number (mm)"),
     (["--t", "0.4", "--plot", "out.txt"], "--plot: out.txt: the file name must end in"),
     (["--t", "0.4", "--csv", "no/such/folder.csv"], "the folder no/such does not exist"),
-    (["--t", "0.4", "--ring-adhesion", "0"], "--ring-adhesion: 0 must be > 0"),
+    (["--t", "0.4", "--ring-adhesion", "0"], "--ring-adhesion: 0 must be > 0 (the Tabor "
+     "parameter of the adhesion law) or \"zero\""),
     (["--t", "0.4", "--ring-adhesion", "zro"],
      "--ring-adhesion: 'zro' must be a Tabor parameter (a number > 0) or zero"),
     (["--t", "0.4", "--ring-adhesion", "zero", "--interface", "no_slip"],

@@ -53,7 +53,7 @@ API_NAMES = dict(R_mm="R_mm", t_mm="t_mm", h_mm="h_mm", C10_MPa="C10_MPa",
                  interface="interface", stick="stick", mesh="mesh", contact="contact",
                  ring_adhesion="ring_adhesion")
 RING_REL = 0.05                    # the bracket of gamma_c: its ends this far apart
-ZERO_RANGE = math.inf              # ring_adhesion: zero-range adhesion (the energy method)
+ZERO_RANGE = "zero"                # ring_adhesion: zero-range adhesion (the energy method)
 
 
 @dataclass(frozen=True)
@@ -75,7 +75,7 @@ class SnapInput:
     mesh: str
     contact: str = "soft"
     ring_adhesion: float = None    # a Tabor parameter: bracket gamma_c at the last ring
-    #                                (ZERO_RANGE: by the energy method)
+    #                                (ZERO_RANGE, "zero": by the energy method)
 
     @property
     def p_atm_over_C10(self) -> float:
@@ -133,12 +133,12 @@ def snap_input(R_mm, t_mm, h_mm, C10_MPa, delta_max_mm=None, unload_to_mm=None,
     p_atm_kPa = check_finite(p_atm_kPa, n["p_atm_kPa"], "kPa")
     if not p_atm_kPa > 0:
         raise InputError(f"{n['p_atm_kPa']}: {p_atm_kPa:g} must be > 0 (kPa)")
-    if ring_adhesion is not None:
-        if ring_adhesion != ZERO_RANGE:
-            ring_adhesion = check_finite(ring_adhesion, n["ring_adhesion"])
+    if ring_adhesion is not None and ring_adhesion != ZERO_RANGE:
+        ring_adhesion = check_finite(ring_adhesion, n["ring_adhesion"])
         if not ring_adhesion > 0:
             raise InputError(f"{n['ring_adhesion']}: {ring_adhesion:g} must be > 0 (the "
-                             "Tabor parameter of the adhesion law)")
+                             "Tabor parameter of the adhesion law) or \"zero\"")
+    if ring_adhesion is not None:
         for key, value, need in (("unload_to_mm", unload_to_mm, None),
                                  ("pocket", pocket, "vented"),
                                  ("interface", interface, "frictionless")):

@@ -365,6 +365,8 @@ class Unloading:
     gamma: float
     rings: tuple
     ended_by: str
+    moved: tuple = ()        # each rim move's end, before the edges settle (the ring
+    #                          before it held: rings[i] -> moved[i] at fixed held set)
 
     @property
     def P_star(self) -> float:
@@ -372,6 +374,13 @@ class Unloading:
 
     def array(self, name):
         return np.array([getattr(r, name) for r in self.rings])
+
+    def energy_miss(self) -> float:
+        """The energy balance of the rim moves: max over the moves of |U after - U before
+        - work of P| (trapezoidal rule over the move, at the held set) / max U."""
+        miss = [abs(b.U - a.U + 0.5 * (a.P + b.P) * (a.delta - b.delta))
+                for a, b in zip(self.rings, self.moved)]
+        return max(miss, default=0.0) / max(r.U for r in self.rings)
 
 
 def unload(d, start, gamma: float, delta_end: float, step: float,
@@ -394,7 +403,7 @@ def unload(d, start, gamma: float, delta_end: float, step: float,
     if s.closed:
         return Unloading(gamma, tuple(rings), "closed at the start: " + (s.why or "the "
                                                                            "dimple closed"))
-    ring = s.ring
+    ring, moved = s.ring, []
     while ring.delta > delta_end:
         c = constraints(d, "frictionless", list(ring.held))
         h = min(step, ring.delta - delta_end)
@@ -408,17 +417,17 @@ def unload(d, start, gamma: float, delta_end: float, step: float,
                 h /= 2
         else:
             return Unloading(gamma, tuple(rings), f"the rim move from delta "
-                             f"{ring.delta:.6g} R failed ({why})")
-        moved = _held_state(d, x, ring.delta - h, r, list(ring.held))
-        s = settle(RingLattice(d, moved, settings, shrink=True), gamma)
+                             f"{ring.delta:.6g} R failed ({why})", tuple(moved))
+        moved.append(_held_state(d, x, ring.delta - h, r, list(ring.held)))
+        s = settle(RingLattice(d, moved[-1], settings, shrink=True), gamma)
         rings.append(s.ring)
         if s.detached or s.closed:
             return Unloading(gamma, tuple(rings), ("detached" if s.detached else "closed")
                              + f" at delta {s.ring.delta:.6g} R" + (f" ({s.why})" if s.why
-                                                                   else ""))
+                                                                   else ""), tuple(moved))
         if len(s.ring.held) < 3 and s.ring.delta > 0:
             return Unloading(gamma, tuple(rings), f"the ring shrank to one node at delta "
                              f"{s.ring.delta:.6g} R > 0, where letting it go is not built "
-                             "(the shell off the plane there)")
+                             "(the shell off the plane there)", tuple(moved))
         ring = s.ring
-    return Unloading(gamma, tuple(rings), "")
+    return Unloading(gamma, tuple(rings), "", tuple(moved))

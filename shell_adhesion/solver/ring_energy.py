@@ -19,8 +19,10 @@ ring closed (the inner edge at the apex: the dimple pulled flat).  The largest g
 descent ends on a ring around a lifted apex is gamma_c (`zip_limit`).  `unload` raises
 the rim with the held ring kept and lets both edges settle after each step (growing or,
 `RingLattice(shrink=True)`, letting element edges go).  A discretisation bound to a
-sealed pocket (solver.pocket) adds the gas's energy to U.  The adhesive edge force of a
-frictionless held set (solver.edge) is left out: G is first order.
+sealed pocket (solver.pocket) adds the gas's energy to U.  Every held ring passes the
+element-quality check of a relaxation (solver.quality; a ring that fails raises
+QualityError).  The adhesive edge force of a frictionless held set (solver.edge) is left
+out: G is first order.
 
 Dimensionless as the solver: lengths / R, energies / (C10 R^3), gamma and G / (C10 R),
 forces / (C10 R^2) (> 0 compression).
@@ -30,12 +32,13 @@ import math
 
 import numpy as np
 
-from shell_adhesion.errors import ConvergenceError
+from shell_adhesion.errors import ConvergenceError, QualityError
 from shell_adhesion.solver.contact import (constraints, contact_reactions, deformed_radius,
                                            gaps, rim_load)
 from shell_adhesion.solver.forms import potential_energy
 from shell_adhesion.solver.linear import Timer
 from shell_adhesion.solver.path import Settings, _Problem, _release_tensile
+from shell_adhesion.solver.quality import Quality, quality
 from shell_adhesion.solver.snap import SnapSettings, SnapState
 
 PULL_STEPS = 4        # prescribed steps that bring an added node onto the plane, each
@@ -65,6 +68,7 @@ class HeldRing:
     tension: float           # least z reaction on the held nodes (C10 R^2; < 0: pulled)
     free_gap: float          # least height / R of the outer nodes not held (< 0: through
     #                          the plane: contact the held set leaves out)
+    quality: Quality = None  # element quality (solver.quality; passed, J not counted)
     x: np.ndarray = field(repr=False, default=None)
 
     @property
@@ -105,6 +109,9 @@ class Inadmissible(ValueError):
     """A ring shrunk where the released nodes would press through the plane."""
 
 
+DETACH = (None, None)     # `settle`'s move off the plane
+
+
 class RingLattice:
     """The held rings (j, k) grown from one held ring, (0, 0), solved on demand and kept
     (all at its delta; j, k element edges inward and outward, >= 0, or, with `shrink`,
@@ -142,7 +149,8 @@ class RingLattice:
         if (j, k) not in self.rings:
             outward = k != 0
             n = k if outward else j
-            base = self(j, k - (1 if k > 0 else -1)) if outward else self(j - (1 if j > 0 else -1), 0)
+            back = 1 if n > 0 else -1           # the neighbour one element edge nearer (0, 0)
+            base = self(j, k - back) if outward else self(j - back, 0)
             if n > 0:
                 edge, step = (base.held[-1], 1) if outward else (base.held[0], -1)
                 if not 0 <= edge + 2 * step < len(self.corner):
@@ -228,12 +236,20 @@ def held_ring(d, state: SnapState, pb=None) -> HeldRing:
 
 
 def _held_state(d, x, delta, r, held) -> HeldRing:
+    """The converged held ring; QualityError (a ConvergenceError) where an element folds
+    or distorts beyond solver.quality's thresholds (the pointwise J range is not counted:
+    the held edges are crack tips, as in a relaxation)."""
+    q = quality(d, x)
+    problem = q.problem(check_J=False)
+    if problem:
+        raise QualityError(f"element quality: {problem} at delta = {delta:.4g} R with outer "
+                           f"nodes {held[0]}-{held[-1]} held")
     free = np.setdiff1d(np.arange(len(d.capmesh.outer)), held)
     return HeldRing(delta, tuple(held), float(deformed_radius(d, x, held[0])),
                     float(deformed_radius(d, x, held[-1])), potential_energy(d, x),
                     rim_load(d, r), float(gaps(d, x, [0])[0]),
                     float(contact_reactions(d, r, held).min()),
-                    float(gaps(d, x, free).min()), x)
+                    float(gaps(d, x, free).min()), q, x)
 
 
 def settle(lattice: RingLattice, gamma: float, lift: float = None) -> Settled:
@@ -276,7 +292,7 @@ def settle(lattice: RingLattice, gamma: float, lift: float = None) -> Settled:
             except Detached:
                 if not off_plane:
                     continue
-                f, nb = 0.0, None
+                f, nb = 0.0, DETACH
             except Inadmissible:
                 continue
             except ConvergenceError as err:
@@ -284,15 +300,15 @@ def settle(lattice: RingLattice, gamma: float, lift: float = None) -> Settled:
                     return Settled(gamma, lattice(*jk), j, k, True, moves,
                                    f"no held ring {nb} after the inner edge passed its "
                                    "largest G")
-                raise ConvergenceError(f"settle at gamma {gamma:g}: the ring grown {nb[0]} "
-                                       f"element edges inward and {nb[1]} outward was not "
-                                       f"found ({err})") from None
+                raise ConvergenceError(f"settle at gamma {gamma:g}: the held ring {nb} (element "
+                                       f"edges grown inward, outward) was not found "
+                                       f"({err})") from None
             if f < best_F - 1e-12 * abs(best_F):
                 best, best_F = nb, f
-                if nb is None:
-                    return Settled(gamma, lattice(*jk), j, k, False, moves + 1,
-                                   "detached: letting go of the last element edge lowers F",
-                                   detached=True)
+        if best is DETACH:
+            return Settled(gamma, lattice(*jk), j, k, False, moves + 1,
+                           "detached: letting go of the last element edge lowers F",
+                           detached=True)
         if best is None:
             break
         if best[0] > j:

@@ -10,8 +10,9 @@ import xarray as xr
 
 from shell_adhesion.cube import CURVES, PULL_OFF     # the cube's names, units and long names
 from shell_adhesion import theory
-from shell_adhesion.solver.error_bars import (coarsest_usable, curve_error, error_bar,
-                                               observed_order, refines_through_thickness, rule)
+from shell_adhesion.solver.error_bars import (assumed_order, coarsest_usable, curve_error,
+                                               error_bar, observed_order,
+                                               refines_through_thickness, rule)
 from shell_adhesion.solver.scaling import energy_mJ, force_N, length_mm
 
 from .a0_note import a0_note
@@ -54,6 +55,7 @@ def _values(result):
     refused = dict(result.refused)
     conv = dict(force=F, length=L)
     observable = order_observable(result)
+    order = assumed_order(inp.t_mm / R, inp.mesh)      # of a bar from two meshes
 
     def dimensional(po, g):
         if po is None:
@@ -81,10 +83,10 @@ def _values(result):
             for k in (*PULL_OFF, "eta"):
                 x2 = np.nan if c2 is None else c2[k]
                 x3 = None if c3 is None else c3[k]
-                values[f"{k}_error"] = float(error_bar(values[k], x2, x3, observable))
+                values[f"{k}_error"] = float(error_bar(values[k], x2, x3, observable, order))
                 values[f"{k}_order"] = (float(observed_order(values[k], x2, x3, observable))
                                         if x3 is not None else np.nan)
-                values[f"{k}_rule"] = rule(values[k], x2, x3, observable)
+                values[f"{k}_rule"] = rule(values[k], x2, x3, observable, order)
         values["jkr_P_star"] = theory.jkr_P_star_N(R, g)
         adhesion.append((g, values, curve))
     return loading, relaxations, adhesion

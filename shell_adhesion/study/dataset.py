@@ -57,8 +57,9 @@ from shell_adhesion.cube import (CURVE_COORDS, CURVES, DIMS, GAMMA_UNITS, PULL_O
                                  study_attrs)
 from shell_adhesion.solver import case, request
 from shell_adhesion.solver.cavity import P_ATM_KPA
-from shell_adhesion.solver.error_bars import (coarsest_usable, curve_error, error_bar,
-                                               observed_order, refines_through_thickness)
+from shell_adhesion.solver.error_bars import (ORDER, assumed_order, coarsest_usable,
+                                               curve_error, error_bar, observed_order,
+                                               refines_through_thickness)
 from shell_adhesion.solver.material import NEO_HOOKE
 from shell_adhesion.solver.mesh import mesh_spec
 from shell_adhesion.solver.scaling import energy_mJ, force_N, gamma_hat, length_mm
@@ -285,15 +286,16 @@ def _short(key) -> tuple:
     return key[:2] + tuple(key[3:])
 
 
-def _errors(values, coarser, coarsest=None, observable=True) -> dict:
+def _errors(values, coarser, coarsest=None, observable=True, order=ORDER) -> dict:
     """`<name>_error` of each pull-off value and eta from the next coarser mesh's values
     (and the one after it's: Richardson where the three converge and the family's steps
-    are `observable`), and `<name>_order`, the order observed on the three meshes (NaN
-    where the rule of order 1 is used: solver.error_bars)."""
+    are `observable`; from two meshes the bar assumes `order`), and `<name>_order`, the
+    order observed on the three meshes (NaN where an assumed order is used:
+    solver.error_bars)."""
     out = {}
     for k, v in values.items():
         c3 = coarsest[k] if coarsest else None
-        out[f"{k}_error"] = (float(error_bar(v, coarser[k], c3, observable)) if coarser
+        out[f"{k}_error"] = (float(error_bar(v, coarser[k], c3, observable, order)) if coarser
                              else np.nan)
         out[f"{k}_order"] = (float(observed_order(v, coarser[k], c3, observable))
                              if coarser and coarsest else np.nan)
@@ -357,7 +359,7 @@ def _build(plan: Plan, served: dict, failed: dict, history: str, material) -> xr
                                                                   ("coarsest", coarsest)))
                     results[i][0].update(_errors(
                         results[i][0], c2, c3 if coarsest_usable(t, study.mesh) else None,
-                        refines_through_thickness(t, study.mesh)))
+                        refines_through_thickness(t, study.mesh), assumed_order(t, study.mesh)))
                     notes[i] = "; ".join(w for w in (why2, why3) if w)
             except ValueError as e:     # shell_adhesion.energy.OutOfRange and gamma > gamma_max
                 status[i], reason[i] = "out of range", str(e)

@@ -11,8 +11,9 @@ then on the other meshes relaxed from contact fronts ending on the answer's node
 `solve_case` solves its error-bar companions; `--family larger` instead: each mesh picks
 its own, the rule before), and prints per mesh: the node type, element layers through the thickness, dofs, P* [N], the
 error bar the tool gives that mesh's answer from its two coarser companions (the rule:
-observed order p with factor 1.25, or order 1 assumed with factor 3, from the next coarser
-mesh alone where the one after it has a single layer through the shell; solver.error_bars),
+observed order p with factor 1.25, or order 1 assumed with factor 3, or from the next
+coarser mesh alone at the order it assumes where the one after it has a single layer
+through the shell: solver.error_bars.assumed_order),
 the true error (distance to the reference, the last mesh), and bar / true error (at most 3
 is useful, at least 1 honest).  Then the wall times.
 
@@ -30,7 +31,8 @@ import numpy as np
 
 from shell_adhesion.energy import _interior_min, equilibrium
 from shell_adhesion.solver.case import solve_paths
-from shell_adhesion.solver.error_bars import (coarsest_usable, error_bar, observed_order,
+from shell_adhesion.solver.error_bars import (assumed_order, coarsest_usable, error_bar,
+                                               observed_order,
                                                refines_through_thickness)
 from shell_adhesion.solver.mesh import mesh_spec, thickness_layers
 from shell_adhesion.solver.request import Request, answers, gamma_bucket, solve_request
@@ -112,14 +114,16 @@ def _table(rows, R, t, h, C10, gamma, g):
           f"{'rule':>10s} {'true [N]':>9s} {'ratio':>6s} {'to extr.':>8s} {'wall [s]':>8s}")
     for i, (mesh, fam, layers, dofs, P, wall) in enumerate(rows):
         bar, rule = np.nan, ""
-        if i >= 2:
-            # the tool's rule: the mesh two below only where it may enter the bar
-            third = rows[i - 2][4] if coarsest_usable(t / R, mesh) else None
-            args = (P, rows[i - 1][4], third, refines_through_thickness(t / R, mesh))
+        if i >= 1:
+            # the tool's rule: the mesh two below only where it may enter the bar, else
+            # two meshes at the order they assume
+            third = rows[i - 2][4] if i >= 2 and coarsest_usable(t / R, mesh) else None
+            args = (P, rows[i - 1][4], third, refines_through_thickness(t / R, mesh),
+                    assumed_order(t / R, mesh))
             bar = float(error_bar(*args))
-            p = float(observed_order(*args)) if third is not None else np.nan
-            rule = (f"p {p:.2f}" if np.isfinite(p) else
-                    "order 1 x3" if third is not None else "two meshes")
+            p = float(observed_order(*args[:4])) if third is not None else np.nan
+            rule = (f"p {p:.2f}" if np.isfinite(p) else "order 1 x3" if third is not None
+                    else f"2 meshes p {args[4]:.2g}")
         true = abs(P - ref) if i < len(rows) - 1 else np.nan
         print(f"{mesh:9s} {fam:>7s} {layers:6d} {dofs:6d} {P:10.5f} {bar:9.2g} {rule:>10s} "
               f"{true:9.2g} {bar / true if true else np.nan:6.2f} "

@@ -34,9 +34,9 @@ gamma/(C10 R) 0.015 -7.87840, -7.88395, -7.89428, -7.90074 (steps -0.0055, -0.01
 last three give orders 0.68 and 0.67, and the bar 3 |f_h - f_2h| of order 1 was 0.6 and
 1.25 times the default mesh's distance to the extrapolated value: at 0.015 it did not
 bracket it.  With the family's order 2/3 (factor 3 / (2^(2/3) - 1) = 5.1 on the step)
-it is 1.03 and 2.1 times.  Measured on t/R 0.02, h/R 0.2
+it is 1.03 and 2.1 times.  The order-1 bars on t/R 0.02, h/R 0.2
 (P* on 1, 2, 4, 8 layers; bar / distance of the default mesh to the fine one, with the
-coarser mesh -> without): gamma/(C10 R) 0.001 (its own mesh) 20 -> 1.8, 0.005 1.02 ->
+coarser mesh -> without; the order-2/3 bar is 1.70 times the latter): gamma/(C10 R) 0.001 (its own mesh) 20 -> 1.8, 0.005 1.02 ->
 2.4, 0.015 5.0 -> 1.6, 0.03 3.4 -> 3.4; 0.001 on the mesh fitted to 0.03 28 -> 68 (there
 the default mesh lies 0.012 % from the fine one, 1/24 of its own step: no two-mesh rule
 sees that).

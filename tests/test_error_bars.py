@@ -364,9 +364,9 @@ def test_thinnest_shell_error_bar_is_useful(gamma, P_N, bar_N, reference_N):
     value lies beyond it), at most 3 times its distance to it
     (`python benchmarks/error_bars.py 20 0.4 4 0.3 GAMMA default default finer --window
     0.98,1.4`, 100 minutes).  Measured: -3.07537 +- 0.00966 N, fine (24,837 dofs, 35 min
-    on a loaded machine) -3.07769 N (0.24 bars), 2.4 times the distance to the finer mesh; -0.642713 +- 0.00114 N, the
-    fine mesh's own run (corner fronts) -0.643499 N (0.69 bars), 1.67 times the distance
-    to the finer mesh.  With order 1 the bars were 0.00568 and 0.00067 N (0.98 times the
+    on a loaded machine) -3.07769 N (0.24 bars), 2.4 times the distance to the finer
+    mesh; -0.642713 +- 0.00114 N, the fine mesh's own run (corner fronts) -0.643499 N
+    (0.69 bars), 1.67 times the distance to the finer mesh.  With order 1 the bars were 0.00568 and 0.00067 N (0.98 times the
     distance to the finer mesh at 0.001: it did not bracket it).  The fine mesh takes
     half an hour (`python benchmarks/error_bars.py 20 0.4 4 0.3 30`)."""
     P, bar = _useful_bar_against_fine("t/R 0.02", 20.0, 0.4, 4.0, 0.3, gamma,

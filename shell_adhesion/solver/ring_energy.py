@@ -391,12 +391,15 @@ class Unloading:
     def array(self, name):
         return np.array([getattr(r, name) for r in self.rings])
 
-    def energy_miss(self) -> float:
-        """The energy balance of the rim moves: max over the moves of |U after - U before
-        - work of P| (trapezoidal rule over the move, at the held set) / max U."""
-        miss = [abs(b.U - a.U + 0.5 * (a.P + b.P) * (a.delta - b.delta))
+    def move_misses(self) -> list:
+        """|U after - U before - work of P| of each rim move (trapezoidal rule over the
+        move, at the held set; C10 R^3)."""
+        return [abs(b.U - a.U + 0.5 * (a.P + b.P) * (a.delta - b.delta))
                 for a, b in zip(self.rings, self.moved)]
-        return max(miss, default=0.0) / max(r.U for r in self.rings)
+
+    def energy_miss(self) -> float:
+        """The energy balance of the rim moves: the largest `move_misses` / max U."""
+        return max(self.move_misses(), default=0.0) / max(r.U for r in self.rings)
 
 
 def unload(d, start, gamma: float, delta_end: float, step: float,

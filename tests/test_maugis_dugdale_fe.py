@@ -31,7 +31,7 @@ import numpy as np
 import pytest
 
 from shell_adhesion.solver import maugis_dugdale as md
-from shell_adhesion.solver.arclength import pull_off, trace
+from shell_adhesion.solver.arclength import ArcSettings, pull_off, trace
 from shell_adhesion.solver.cohesive import CohesiveLaw, Interface
 from shell_adhesion.solver.forms import discretise
 from shell_adhesion.solver.geometry import Cap
@@ -78,6 +78,22 @@ def test_pull_off_follows_maugis_dugdale(lam):
         assert math.isnan(po.delta_dagger)
     # every converged state is finite
     assert np.all(np.isfinite(Ps)) and np.all(np.isfinite(path.array("delta")))
+    # a path that answers passes a new extreme of a, c or delta every few states: the
+    # stall bound, which ends a path that zigzags, is far from it (measured: at most 13
+    # states on every cohesive path of the tests and the base shell at lambda 3)
+    assert _longest_run_without_an_extreme(path) <= ArcSettings().stall / 5
+
+
+def _longest_run_without_an_extreme(path) -> int:
+    """The most states in a row that passed no new extreme of their leg (as `trace` counts
+    them for its stall bound)."""
+    from shell_adhesion.solver.arclength import Stall
+    stall, longest = Stall(), 0
+    for i, s in enumerate(path.states):
+        run = stall.after(s.a, s.c, s.delta, retracting=0 <= path.turn <= i,
+                          new_leg=i == path.turn)
+        longest = max(longest, run)
+    return longest
 
 
 def test_dmt_limit():

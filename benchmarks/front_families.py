@@ -9,18 +9,19 @@ kind, the larger, and its error-bar companions the same.  This script solves the
 (no_slip) on the default mesh as `solve_case` fits it to the one gamma asked, then on each
 MESH relaxes the starts of each kind whose contact radius lies within LO to HI (default
 0.8 to 1.4) times that answer's a*, on the answer's fit (even arc, loading target,
-depth), and prints per mesh and kind: dofs, paths relaxed, P* [N] (the lowest interior
-minimum of that stretch of the equilibrium curve) and the wall time.
+depth), and prints per mesh and kind: element layers through the shell, dofs, P* [N]
+(the lowest interior minimum of that stretch of the equilibrium curve: error_bars.py's
+windowed reference) and the wall time.
 """
+from pathlib import Path
 import sys
 import time
 
-import numpy as np
-
-from shell_adhesion.energy import _interior_min, equilibrium
-from shell_adhesion.solver.case import solve_paths
 from shell_adhesion.solver.request import Request, answers, gamma_bucket, solve_request
 from shell_adhesion.solver.scaling import force_N, gamma_hat
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from error_bars import _windowed     # noqa: E402  (the windowed solve and its P*)
 
 
 def main(argv):
@@ -36,23 +37,14 @@ def main(argv):
           f"(gamma/(C10 R) {g:.4g}); the answer (default mesh, its own kind: "
           f"{ps.stats['relaxation_family']}): P* {force_N(po.P_star, C10, R):.6f} N, "
           f"a* {a_star * R:.4f} mm; window {lo:g}-{hi:g} a*")
-    print(f"{'mesh':8s} {'fronts':>8s} {'dofs':>6s} {'paths':>5s} {'P* [N]':>10s} {'wall [s]':>8s}")
+    print(f"{'mesh':8s} {'fronts':>8s} {'layers':>6s} {'dofs':>6s} {'P* [N]':>10s} {'wall [s]':>8s}")
     for mesh in meshes:
         for family in ("corner", "midside"):
-            t0 = time.perf_counter()
-            ps, d, _ = solve_paths(t / R, h / R, "no_slip", mesh, fit["delta_bound"], top,
-                                   uniform=fit["uniform_arc"], a_stop=fit["a_stop"],
-                                   family=family, a_window=(lo * a_star, hi * a_star))
-            found = _interior_min(*_curve(ps, g)) if len(ps.usable()) >= 4 else None
-            P = np.nan if found is None else float(force_N(found[1], C10, R))
-            print(f"{mesh:8s} {family:>8s} {d.ndof:6d} {len(ps.usable()):5d} {P:10.6f} "
-                  f"{time.perf_counter() - t0:8.0f}", flush=True)
-
-
-def _curve(ps, g):
-    """(a, P) of the equilibrium curve at gamma/(C10 R) = g."""
-    eq = equilibrium(ps.surface(), g)
-    return eq.a, eq.P
+            _, _, layers, dofs, (P,), wall = _windowed(
+                t / R, h / R, mesh, top, fit, family, a_star, (lo, hi), g, C10, R,
+                time.perf_counter())
+            print(f"{mesh:8s} {family:>8s} {layers:6d} {dofs:6d} {P:10.6f} {wall:8.0f}",
+                  flush=True)
 
 
 if __name__ == "__main__":

@@ -41,7 +41,8 @@ times the distance to the latter).  The order-1 bars on t/R 0.02, h/R 0.2
 coarser mesh -> without; the order-2/3 bar is 1.70 times the latter): gamma/(C10 R) 0.001 (its own mesh) 20 -> 1.8, 0.005 1.02 ->
 2.4, 0.015 5.0 -> 1.6, 0.03 3.4 -> 3.4; 0.001 on the mesh fitted to 0.03 28 -> 68 (there
 the default mesh lies 0.012 % from the fine one, 1/24 of its own step: no two-mesh rule
-sees that).
+sees that; that set relaxes corner fronts, whose values converge fast there, where 0.001
+alone relaxes midside ones: docs/domain.md, "Which contact fronts").
 
 The meshes must also relax the same kind of paths: contact fronts ending on element
 corners and on midside nodes (solver.case.relaxation_starts) converge to one value from

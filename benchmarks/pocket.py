@@ -12,12 +12,17 @@ penalty and gas energy).
 Run: python benchmarks/pocket.py [--t 0.02] [--mesh coarser] [--delta-max 5]
 [--unload-to -1] [--pocket sealed|vented] [--n 1.0] [--p-atm-kPa 101.325]
 [--C10-kPa 300] [--seal turn|ring] [--seal-lift 0.1] [--interface frictionless|no_slip]
-[--stick turn|touch] [--every 5] [--figure PNG]
+[--stick turn|touch] [--cavity-fraction 0] [--every 5] [--figure PNG]
 (--delta-max, --unload-to and --seal-lift in thicknesses t; p_a / C10 from the two
 pressures in kPa; --seal ring: the gas is sealed at the first ring whose apex is lifted
 by more than --seal-lift, turn: at the turn to the unloading; --interface no_slip: the
 contact sticks, from the turn (--stick turn, pressed frictionless past the snap) or from
-the first touch (tests/test_stick.py).)  Bad input: one line, exit 2.
+the first touch (tests/test_stick.py); --cavity-fraction F: the shell's own cavity, closed
+by a rigid lid at the rim, held at the gauge pressure -F p_cl from the start, p_cl = 8 C10
+(t/R)^2 a complete sphere's classical buckling pressure: the free shell is depressurised
+first and the loading starts where it touches the plane (solver.cavity.first_touch); the
+energies are then counted from that state, the cavity's load -p_c (V_c - V_c0) with the
+gas's.)  Bad input: one line, exit 2.
 """
 import argparse
 import dataclasses
@@ -28,6 +33,7 @@ import time
 import numpy as np
 
 from shell_adhesion.errors import InputError
+from shell_adhesion.solver import cavity as cv
 from shell_adhesion.solver import pocket as pk
 from shell_adhesion.solver.contact import INTERFACES
 from shell_adhesion.solver.forms import discretise
@@ -50,6 +56,8 @@ def main(argv=None):
                     help="in thicknesses t")
     ap.add_argument("--interface", default="frictionless")
     ap.add_argument("--stick", choices=("turn", "touch"), default="turn")
+    ap.add_argument("--cavity-fraction", type=float, default=0.0,
+                    help="the cavity's suction / p_cl (0: the cavity open)")
     ap.add_argument("--every", type=int, default=5)
     ap.add_argument("--figure", default=None, help="draw P and the gauge pressure to this PNG")
     a = ap.parse_args(argv)
@@ -61,17 +69,29 @@ def main(argv=None):
         p_atm = pk.p_atm_over_C10(a.p_atm_kPa, a.C10_kPa)
         pocket = pk.Pocket(a.pocket, p_atm, a.n)
         d = discretise(cap_mesh(loading_cap(T, 1.0), mesh_spec(a.mesh, ring_arc(a.delta_max * T))))
+        if not (math.isfinite(a.cavity_fraction) and a.cavity_fraction >= 0):
+            raise InputError(f"--cavity-fraction: {a.cavity_fraction!r} must be a finite "
+                             "number >= 0 (the suction over p_cl)")
+        p_cavity = -a.cavity_fraction * 8 * T * T
+        cavity = cv.Cavity("pressure", p=p_cavity, p_atm=p_atm) if p_cavity else None
     except InputError as err:
         print(err, file=sys.stderr)
         return 2
-    d = pk.bind(d, pocket)
+    x0 = None
+    if cavity is None:
+        d = pk.bind(d, pocket)
+    else:
+        d, x0, pressurised = pk.bind_depressurised(d, pocket, cavity)
+        print(f"cavity at {p_cavity:.4g} C10 ({a.cavity_fraction:g} p_cl, "
+              f"{p_cavity * a.C10_kPa:.4g} kPa): the free shell's apex up by "
+              f"{pressurised.apex_uz / T:.4f} t")
     settings = dataclasses.replace(SnapSettings(), seal_at_turn=a.seal == "turn",
                                    seal_lift=a.seal_lift)
     if a.interface == "no_slip":
         settings = dataclasses.replace(settings, stick_at_turn=a.stick == "turn")
     t0 = time.perf_counter()
     path = trace_loading(d, a.delta_max * T, settings, unload_to=a.unload_to * T,
-                         interface=a.interface)
+                         interface=a.interface, x0=x0)
     wall = time.perf_counter() - t0
     print(f"t/R = {T:g}, h/R = 1, {a.mesh} mesh, {d.ndof} dofs; pocket {a.pocket}, n = "
           f"{a.n:g}, {a.interface}"
@@ -115,13 +135,16 @@ def main(argv=None):
     if path.turn >= 0:
         P = path.array("P")[path.turn:]
         print(f"least P along the unloading: {P.min():+.4e} C10 R^2")
-    W, U, Pi, E = path.work(), path.array("U"), path.array("Pi"), path.array("E_gas")
+    W = path.work()
+    U, Pi, E = (path.array(name) - path.array(name)[0] for name in ("U", "Pi", "E_gas"))
     J = np.concatenate([[0.0], np.cumsum(path.array("anchor_jump"))[:-1]])
     miss = W - U - Pi - E + J
-    print(f"energy: max |W - U - Pi - E_gas| / max U = {np.abs(miss).max() / U.max():.2e}"
+    scale = np.abs(U).max()
+    print(f"energy (changes from the first state): max |W - U - Pi - E_gas| / max |U| = "
+          f"{np.abs(miss).max() / scale:.2e}"
           + (f" (over the sealed part, from its first state: "
-             f"{np.abs(miss[k:] - miss[k]).max() / U.max():.2e})" if k is not None else "")
-          + f"; max |E_gas| / max U = {np.abs(E).max() / U.max():.2e}")
+             f"{np.abs(miss[k:] - miss[k]).max() / scale:.2e})" if k is not None else "")
+          + f"; max |E_gas| / max |U| = {np.abs(E).max() / scale:.2e}")
     if a.figure:
         _figure(path, T, p_atm, a.figure)
     print(f"{len(path.states)} states, {path.timer.newton_iterations} Newton iterations, "

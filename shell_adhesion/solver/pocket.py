@@ -27,6 +27,11 @@ and the work of P equals U + the contact penalty's energy + E_gas.  As in the se
 p is one more unknown (the last entry of x), bordered onto the Newton system by V(x) =
 V_gas(p); the unknown is there from the start (its row p = 0 until the pocket seals), so
 the pattern does not change when it seals.
+
+The shell's own cavity (solver.cavity) under a prescribed gauge pressure may act at the
+same time (the depressurised gripper): `bind` keeps its load (`PocketLoad.shell`), whose
+residual, tangent and energy -p_c (V_c - V_c0) are added to the pocket's (a sealed cavity,
+a second gas unknown, is not built).
 """
 from dataclasses import dataclass, replace
 import math
@@ -35,8 +40,9 @@ import numpy as np
 
 from shell_adhesion.errors import InputError
 
-from .cavity import (P_ATM_KPA, _border, _GAUSS_W, _GAUSS_X, edge_slots,
-                     gas_energy, gas_volume, pressure_tangent)
+from .cavity import (P_ATM_KPA, Cavity, _border, _GAUSS_W, _GAUSS_X, edge_slots,
+                     first_touch, gas_energy, gas_volume, pressure_tangent)
+from .cavity import bind as bind_cavity
 
 MODES = ("vented", "sealed")
 
@@ -99,6 +105,8 @@ class PocketLoad:
     slots: np.ndarray      # (E, 36) positions of the edge blocks in the FE CSR data
     border: tuple          # the gas unknown's row and column (cavity._border)
     V0: float = None
+    shell: object = None   # the shell's own cavity under a prescribed pressure
+                           # (cavity.CavityLoad, mode "pressure"), or None
 
     extra_dofs = 1
 
@@ -201,10 +209,12 @@ class PocketLoad:
         return gas_volume(p, self.V0, 0.0, self.pocket.p_atm, self.pocket.n)
 
     def energy(self, x) -> float:
-        """E_gas(V) / (C10 R^3) of the sealed gas (0 unless sealed)."""
+        """E_gas(V) / (C10 R^3) of the sealed gas (0 unless sealed), plus the energy of the
+        shell's own cavity's pressure load -p_c (V_c - V_c0) if it has one."""
+        E = 0.0 if self.shell is None else self.shell.energy(x)
         if not self.sealed:
-            return 0.0
-        return gas_energy(self.volume(x), self.V0, 0.0, self.pocket.p_atm, self.pocket.n)
+            return E
+        return E + gas_energy(self.volume(x), self.V0, 0.0, self.pocket.p_atm, self.pocket.n)
 
     # ------------------------------------------------- residual and tangent
     def add_residual(self, x, r):
@@ -212,7 +222,13 @@ class PocketLoad:
 
     def add_tangent(self, K, r, x):
         """(K, r) of the FE forms plus the pressure's follower load and the bordered gas
-        row (V_gas(p) - V once sealed; before, p itself, uncoupled).  K None: r alone."""
+        row (V_gas(p) - V once sealed; before, p itself, uncoupled), plus the shell's own
+        cavity's load if it has one.  K None: r alone."""
+        if self.shell is not None:
+            if K is None:
+                r = self.shell.add_residual(x, r)
+            else:
+                K, r = self.shell.add_tangent(K, r, x)
         p = self.pressure(x)
         if not self.sealed:
             if K is None:
@@ -255,13 +271,16 @@ def _shape(xi):
 
 
 def bind(d, pocket: Pocket):
-    """`d` (a forms.Discretisation without a cavity) with the pocket's gas unknown and load
-    (not sealed yet)."""
+    """`d` (a forms.Discretisation, its own cavity open or under a prescribed pressure:
+    cavity.bind) with the pocket's gas unknown and load (not sealed yet)."""
     if not isinstance(pocket, Pocket):
         raise InputError(f"pocket: {pocket!r} must be a Pocket")
-    if d.cavity is not None:
-        raise InputError("pocket: the shell's own cavity is closed; the pocket with a closed "
-                         "cavity is not built yet (use cavity open)")
+    shell = d.cavity
+    if isinstance(shell, PocketLoad):
+        raise InputError("pocket: the discretisation is bound to a pocket already")
+    if shell is not None and shell.cavity.mode != "pressure":
+        raise InputError("pocket: the shell's own cavity is sealed; the pocket with a sealed "
+                         "cavity is not built (use cavity pressure or open)")
     cm = d.capmesh
     outer = cm.outer
     k = np.arange(0, len(outer) - 2, 2)
@@ -269,8 +288,22 @@ def bind(d, pocket: Pocket):
     dofs = np.concatenate([d.ur(nodes), d.uz(nodes)], axis=1)
     n_fe = 2 * d.n2 + d.n1
     load = PocketLoad(pocket, n_fe, dofs, cm.nodes[0, nodes], cm.nodes[1, nodes],
-                      edge_slots(d, dofs), _border(d.csr_indptr, d.csr_indices, np.unique(dofs)))
+                      edge_slots(d, dofs), _border(d.csr_indptr, d.csr_indices, np.unique(dofs)),
+                      shell=shell)
     return replace(d, cavity=load)
+
+
+def bind_depressurised(d, pocket: Pocket, cavity: Cavity):
+    """(d, x0, pressurised): the shell `d` (no cavity bound) with its own cavity held at
+    the prescribed gauge pressure of `cavity` (mode "pressure"), the free shell
+    pressurised and moved so that it just touches the plane at delta = 0
+    (cavity.first_touch; raises its CavitySnap if the free shell snaps first), then bound
+    to `pocket`; x0 is the start state for snap.trace_loading (the pocket's gas unknown
+    appended, 0) and `pressurised` the free shell (cavity.Pressurised)."""
+    if not (isinstance(cavity, Cavity) and cavity.mode == "pressure"):
+        raise InputError(f"cavity: {cavity!r} must be a Cavity with mode 'pressure'")
+    touching, x0, pressurised = first_touch(bind_cavity(d, cavity))
+    return bind(touching, pocket), np.append(x0, 0.0), pressurised
 
 
 def seal(d, x):

@@ -190,7 +190,8 @@ class SnapState:
     x: np.ndarray = field(default=None, repr=False)
     # the pocket (solver.pocket; a discretisation bound to one): its volume / R^3, gauge
     # pressure / C10, seal radius / R (the inner edge of the outermost contact run; NaN:
-    # no ring), the gas's energy / (C10 R^3), and whether the gas is sealed
+    # no ring), the gas's energy / (C10 R^3) (with the shell's own cavity under pressure,
+    # plus its load's -p_c (V_c - V_c0)), and whether the gas is sealed
     V: float = math.nan
     p: float = 0.0
     r_seal: float = math.nan
@@ -287,12 +288,14 @@ class SnapPath:
         return W
 
     def energy_miss(self) -> float:
-        """The energy balance: max |W - U - Pi - E_gas + J| / max U along the path, W the
-        work of P, J the energy added at fixed delta before each state (anchor_jump)."""
-        U = self.array("U")
+        """The energy balance: max |W - dU - dPi - dE_gas + J| / max |dU| along the path,
+        W the work of P, d the change from the first state, J the energy added at fixed
+        delta before each state (anchor_jump)."""
+        U = self.array("U") - self.states[0].U
         J = np.concatenate([[0.0], np.cumsum(self.array("anchor_jump"))[:-1]])
-        miss = self.work() - U - self.array("Pi") - self.array("E_gas") + J
-        return float(np.abs(miss).max() / max(U.max(), 1e-300))
+        miss = (self.work() - U - (self.array("Pi") - self.states[0].Pi)
+                - (self.array("E_gas") - self.states[0].E_gas) + J)
+        return float(np.abs(miss).max() / max(np.abs(U).max(), 1e-300))
 
 
 def contact_set(iface: Interface, x) -> tuple:
@@ -325,7 +328,8 @@ def contact_set(iface: Interface, x) -> tuple:
 
 def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = SnapSettings(),
                   progress=None, unload_to: float = None,
-                  interface: str = "frictionless", adhesion: CohesiveLaw = None) -> SnapPath:
+                  interface: str = "frictionless", adhesion: CohesiveLaw = None,
+                  x0: np.ndarray = None) -> SnapPath:
     """The frictionless loading without adhesion from delta = 0 to delta_max / R, by arc
     length through every fold (module docstring), and, with `unload_to`, the unloading
     from there on by the same continuation (delta decreasing) to unload_to / R (< 0: a pull).
@@ -346,6 +350,9 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
     onto the branch it came along) returns to where it turned and pushes the rim on from
     there (`_jump`, onward: a jump where the energy falls, else the branch goes on from
     delta + push).  `progress(state)` is called after each state if given.
+
+    `x0` the state at delta = 0 (default the undeformed one): the free shell under its
+    cavity's pressure, just touching the plane (cavity.first_touch, on its moved mesh).
 
     `interface` the tangential contact (contact.INTERFACES): "frictionless", or
     "no_slip": a quadrature point in contact is held radially at its radius at the last
@@ -383,12 +390,14 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
     arc = ArcSettings(tol=s.tol, max_iter=s.max_iter)
     cn = _Continuation(Interface(d, law, beta), "frictionless", arc)
     if beta is not None:
-        cn.anchors = point_anchors_at(cn.iface, np.zeros(d.ndof))
+        cn.anchors = point_anchors_at(cn.iface, np.zeros(d.ndof) if x0 is None else x0)
     timers = [cn.timer]
     c = constraints(d, "frictionless", [])
     outer_z = d.uz(d.capmesh.outer[cn.candidates])
     dz_max = s.dz_share * d.capmesh.cap.t
-    x = np.zeros(d.ndof)
+    x = np.zeros(d.ndof) if x0 is None else np.array(x0, dtype=float)
+    if x.shape != (d.ndof,):
+        raise ValueError(f"x0: shape {x.shape} must be ({d.ndof},)")
     delta = 0.0
     K, r = cn.linearise(x)
     t = cn.tangent_at(K, c)
@@ -459,6 +468,11 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
                     and (isinstance(err, _PocketOpens) or not _sealed_ahead(cn, x, t, ds))):
                 ended_by = (f"pocket opened: the contact ring around it is lost between "
                             f"delta = {delta:.6g} R and {delta + 2 * ds * t[1]:.6g} R")
+                break
+            if ds < s.ds_min and turn < 0 and _lifted_off(cn.d, states):
+                ended_by = (f"lifted off at delta = {delta:.6g} R: P fell to "
+                            f"{states[-1].P:.3g} C10 R^2; the cavity's pressure holds the "
+                            "shell's dimple off the plane on its own (a free equilibrium)")
                 break
             if ds < s.ds_min:
                 ended_by = f"step below {s.ds_min:g} at delta = {delta:.6g} R ({err})"
@@ -655,6 +669,17 @@ class _TurnedBack(ConvergenceError):
 def _pocket_of(d):
     """The Pocket a discretisation is bound to, or None."""
     return d.cavity.pocket if isinstance(d.cavity, PocketLoad) else None
+
+
+LIFT_SHARE = 1e-4   # `_lifted_off`: P below this share of its largest on the path
+
+
+def _lifted_off(d, states) -> bool:
+    """A loading from a pressurised start whose rim load has fallen to nothing (below
+    LIFT_SHARE of its largest): the shell's own cavity (suction) holds the dimple."""
+    shell = getattr(d.cavity, "shell", None)
+    P = [st.P for st in states]
+    return shell is not None and max(P) > 0 and P[-1] <= LIFT_SHARE * max(P)
 
 
 def _opens(cn, x) -> bool:

@@ -1,0 +1,133 @@
+"""The shell's own cavity held below ambient and the pocket under its ring together
+(issue 42, item 4; solver.pocket.bind_depressurised, solver.snap.trace_loading with a
+start state): t/R 0.02, h/R 1, frictionless, no adhesion, 'coarser' mesh, p_a/C10 0.3378.
+
+The cavity's suction is -f p_cl, p_cl = 8 C10 (t/R)^2.  Measured (benchmarks/pocket.py
+--cavity-fraction F, coarser and coarse meshes, docs/thin-shells.md): at f 0.1 and 0.15
+the pressed shell dimples without a snap, and sealed at the turn (5.03 t) the pocket
+compresses as the rim rises and opens with P still compressive (no tensile force); at
+f 0.2 and 0.25 the rim load of the pressed shell falls to zero along the dimpled branch
+(at 4.19 t and 2.87 t, the same on both meshes within 0.01 t): the suction holds the
+dimple on its own and the shell lifts off the plane.  Each path takes about 3 s."""
+import math
+
+import numpy as np
+import pytest
+
+from shell_adhesion.errors import InputError
+from shell_adhesion.solver import cavity as cv
+from shell_adhesion.solver import pocket as pk
+from shell_adhesion.solver.contact import constraints
+from shell_adhesion.solver.forms import discretise, potential_energy, residual, tangent
+from shell_adhesion.solver.mesh import cap_mesh, mesh_spec
+from shell_adhesion.solver.snap import (LIFT_SHARE, SnapSettings, loading_cap, ring_arc,
+                                        trace_loading)
+
+T, DELTA_MAX = 0.02, 0.1
+P_ATM = pk.p_atm_over_C10(101.325, 300.0)
+P_CL = 8 * T * T
+ENERGY = 1e-4       # |work of P - dU - dPi - dE_gas| / max |dU| along the path
+
+
+def _d(mesh="coarser"):
+    return discretise(cap_mesh(loading_cap(T, 1.0), mesh_spec(mesh, ring_arc(DELTA_MAX))))
+
+
+def _path(fraction, pocket=pk.Pocket("sealed", P_ATM, 1.0)):
+    d, x0, pressurised = pk.bind_depressurised(
+        _d(), pocket, cv.Cavity("pressure", p=-fraction * P_CL, p_atm=P_ATM))
+    path = trace_loading(d, DELTA_MAX, SnapSettings(seal_at_turn=True), unload_to=-T, x0=x0)
+    return d, path, pressurised
+
+
+@pytest.fixture(scope="module")
+def sealed_015():
+    return _path(0.15)
+
+
+def test_the_cavity_and_the_pocket_load_together_are_conservative():
+    # on a made-up state touching the plane in a ring: the residual is the gradient of
+    # strain + the cavity's load energy -p_c (V_c - V_c0) (the pocket vented), and the
+    # tangent its derivative, with the pocket sealed and the gas expanded
+    d = pk.bind(cv.bind(_d(), cv.Cavity("pressure", p=-0.5 * P_CL, p_atm=P_ATM)),
+                pk.Pocket("sealed", P_ATM, 1.4))
+    cm = d.capmesh
+    r0 = cm.nodes[0]
+    x = np.zeros(d.ndof)
+    x[d.uz(np.arange(cm.nodes.shape[1]))] = -0.01 + 0.03 * np.exp(-(r0 / 0.05) ** 2)
+    assert d.cavity.shell is not None and d.cavity.volume(x) > 0
+    rng = np.random.default_rng(3)
+    v = rng.standard_normal(d.ndof) * 1e-3
+    v[-1] = 0.0
+    h = 1e-6
+    dE = (potential_energy(d, x + h * v) - potential_energy(d, x - h * v)) / (2 * h)
+    r = residual(d, x)
+    assert dE == pytest.approx(r @ v, rel=1e-6)
+    # the cavity's part is there and counted: without it the slope differs
+    bare = pk.bind(_d(), pk.Pocket("vented"))
+    assert abs(residual(bare, x) @ v - r @ v) > 1e-3 * abs(r @ v)
+    ds = pk.seal(d, x)
+    y = x.copy()
+    y[-1] = -0.3 * P_ATM
+    v[-1] = 1e-3
+    K, r = tangent(ds, y)
+    assert np.allclose(r, residual(ds, y), rtol=0, atol=1e-14 * np.abs(r).max())
+    fd = (residual(ds, y + h * v) - residual(ds, y - h * v)) / (2 * h)
+    assert np.abs(fd - K @ v).max() <= 1e-6 * np.abs(K @ v).max()
+
+
+def test_bind_refuses_a_sealed_cavity_and_a_second_pocket():
+    d = _d()
+    with pytest.raises(InputError, match="^pocket: the shell's own cavity is sealed"):
+        pk.bind(cv.bind(d, cv.Cavity("sealed", p_atm=P_ATM)), pk.Pocket("vented"))
+    with pytest.raises(InputError, match="^pocket: the discretisation is bound"):
+        pk.bind(pk.bind(d, pk.Pocket("vented")), pk.Pocket("vented"))
+    with pytest.raises(InputError, match="^cavity: "):
+        pk.bind_depressurised(d, pk.Pocket("vented"), cv.Cavity("sealed", p_atm=P_ATM))
+
+
+def test_a_depressurised_shell_sealed_at_the_turn_gives_no_tensile_pull(sealed_015):
+    d, path, pressurised = sealed_015
+    # the free shell is drawn in by the suction before it touches
+    assert pressurised.apex_uz / T == pytest.approx(0.058, abs=0.002)
+    first = path.states[0]
+    assert first.delta == 0.0 and abs(first.P) < 1e-12 and first.U > 0
+    # no snap: the dimple forms smoothly; pressed to 5.03 t, a ring around the dimple
+    assert not path.jumps()
+    turn = path.states[path.turn]
+    assert turn.ring and turn.sealed and turn.apex_gap > 3 * T
+    assert turn.delta / T == pytest.approx(5.03, abs=0.01)
+    # the energy balance counts the cavity's load: it is more than a tenth of max |dU|
+    dU = path.array("U") - first.U
+    assert path.energy_miss() <= ENERGY
+    assert np.abs(path.array("E_gas") - first.E_gas).max() > 0.1 * np.abs(dU).max()
+    # the gas is compressed on the unloading and opens the ring while P is compressive;
+    # there the gas alone holds the rim (P = p pi r_seal^2)
+    assert path.ended_by.startswith("pocket opened")
+    sealed = [s for s in path.states[path.turn:] if s.sealed]
+    assert min(s.P for s in sealed) > 0 and min(s.p for s in sealed) >= 0
+    last = sealed[-1]
+    assert last.delta / T == pytest.approx(4.97, abs=0.01)
+    assert last.P == pytest.approx(last.p * math.pi * last.r_seal ** 2, rel=1e-3)
+    for s in sealed:
+        assert (s.p + P_ATM) * s.V == pytest.approx(P_ATM * turn.V, rel=1e-8)
+
+
+def test_at_a_fifth_of_p_cl_the_suction_holds_the_dimple_and_the_shell_lifts_off():
+    d, path, _ = _path(0.25)
+    assert path.ended_by.startswith("lifted off at delta")
+    P = path.array("P")
+    last = path.states[-1]
+    assert last.delta / T == pytest.approx(2.87, abs=0.01)
+    assert P[-1] <= LIFT_SHARE * P.max() and last.apex_gap > 2 * T
+    # the rim load rose (to 1.45e-4 C10 R^2 at 1.71 t), then fell along the dimpled
+    # branch: a free equilibrium at the end
+    i = int(np.argmax(P))
+    assert path.states[i].delta / T == pytest.approx(1.71, abs=0.01)
+    assert P[i] == pytest.approx(1.45e-4, abs=0.005e-4)
+    # the FE forms and the suction alone (no contact) are in equilibrium there: what
+    # the plane still carries is nothing next to the suction's load
+    r = residual(d, last.x)
+    free = constraints(d, "frictionless", []).free[:-1]         # not the gas row
+    suction = d.cavity.shell.add_residual(last.x, np.zeros(d.ndof))
+    assert np.abs(r[free]).max() <= 1e-4 * np.abs(suction[free]).max()

@@ -1,6 +1,7 @@
 """The shell's own cavity held below ambient and the pocket under its ring together
 (issue 42, item 4; solver.pocket.bind_depressurised, solver.snap.trace_loading with a
-start state): t/R 0.02, h/R 1, frictionless, no adhesion, 'coarser' mesh, p_a/C10 0.3378.
+start state; solver.grip: pressed, sealed, depressurised at fixed delta, pulled): t/R
+0.02, h/R 1, frictionless, no adhesion, 'coarser' mesh, p_a/C10 0.3378.
 
 The cavity's suction is -f p_cl, p_cl = 8 C10 (t/R)^2.  Measured (benchmarks/pocket.py
 --cavity-fraction F, coarser and coarse meshes, docs/thin-shells.md): at f 0.1 and 0.15
@@ -19,6 +20,7 @@ from shell_adhesion.solver import cavity as cv
 from shell_adhesion.solver import pocket as pk
 from shell_adhesion.solver.contact import constraints
 from shell_adhesion.solver.forms import discretise, potential_energy, residual, tangent
+from shell_adhesion.solver.grip import grip
 from shell_adhesion.solver.mesh import cap_mesh, mesh_spec
 from shell_adhesion.solver.snap import (LIFT_SHARE, SnapSettings, loading_cap, ring_arc,
                                         trace_loading)
@@ -131,3 +133,51 @@ def test_at_a_fifth_of_p_cl_the_suction_holds_the_dimple_and_the_shell_lifts_off
     free = constraints(d, "frictionless", []).free[:-1]         # not the gas row
     suction = d.cavity.shell.add_residual(last.x, np.zeros(d.ndof))
     assert np.abs(r[free]).max() <= 1e-4 * np.abs(suction[free]).max()
+
+
+# ------------------------------------------------ the working order: press, seal, suck, pull
+def _grip(fraction, mesh="coarser"):
+    return grip(_d(mesh), DELTA_MAX, -fraction * P_CL, P_ATM)
+
+
+def test_pressed_sealed_then_depressurised_the_pocket_holds_a_pull():
+    # benchmarks/sealed_gripper.py: pressed to 5 t, sealed, the cavity at -0.5 p_cl
+    # (-0.48 kPa at C10 0.3 MPa), pulled: P* -4.417e-4 C10 R^2 (-0.053 N at R 20 mm),
+    # the ring opening at 4.33 t with the gas at -0.0030 p_a
+    g = _grip(0.5)
+    assert g.ended_by == ""
+    # on the ramp the suction draws the dimple up: the pocket grows, its gas's pressure
+    # and the rim load fall
+    p, V, P = ([getattr(s, k) for s in g.ramp] for k in ("p", "V", "P"))
+    assert len(g.ramp) >= 2 and g.ramp[-1].p_c == pytest.approx(-0.5 * P_CL, rel=1e-12)
+    assert np.all(np.diff(p) < 0) and np.all(np.diff(V) > 0) and np.all(np.diff(P) < 0)
+    turn = g.pull.states[0]
+    assert all(s.sealed for s in g.pull.states) and turn.delta == g.press.states[-1].delta >= DELTA_MAX
+    V0 = g.press.states[-1].V       # sealed there at ambient pressure, isothermal
+    for s in g.pull.states:
+        assert (s.p + P_ATM) * s.V == pytest.approx(P_ATM * V0, rel=1e-8)
+    Pstar, at = g.pull_off()
+    assert Pstar == pytest.approx(-4.417e-4, abs=0.005e-4)
+    assert g.pull.ended_by.startswith("pocket opened")
+    last = g.pull.states[-1]
+    assert at is last and last.delta / T == pytest.approx(4.33, abs=0.01)
+    assert last.p / P_ATM == pytest.approx(-0.0030, abs=0.00005)
+    # where the ring opens it carries nothing: the gas's suction alone holds the rim
+    assert last.P == pytest.approx(last.p * math.pi * last.r_seal ** 2, rel=1e-3)
+    assert -Pstar <= g.ideal_suction(P_ATM)
+    assert g.pull.energy_miss() <= ENERGY
+
+
+def test_without_suction_the_sealed_pocket_gives_no_pull():
+    g = _grip(0.0)
+    assert g.ended_by == "" and g.ramp == ()
+    assert g.pull_off() == (0.0, None)
+    assert g.pull.states[-1].delta / T == pytest.approx(4.69, abs=0.01)   # as test_pocket
+
+
+@pytest.mark.slow
+def test_the_grip_on_the_coarse_mesh():
+    # two element layers against one: P* at -0.5 p_cl and -p_cl within 1.5 %
+    for fraction, coarser in ((0.5, -4.4173e-4), (1.0, -1.1081e-3)):
+        Pstar, _ = _grip(fraction, "coarse").pull_off()
+        assert Pstar == pytest.approx(coarser, rel=0.015)

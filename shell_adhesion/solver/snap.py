@@ -329,7 +329,7 @@ def contact_set(iface: Interface, x) -> tuple:
 def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = SnapSettings(),
                   progress=None, unload_to: float = None,
                   interface: str = "frictionless", adhesion: CohesiveLaw = None,
-                  x0: np.ndarray = None) -> SnapPath:
+                  x0: np.ndarray = None, delta0: float = 0.0) -> SnapPath:
     """The frictionless loading without adhesion from delta = 0 to delta_max / R, by arc
     length through every fold (module docstring), and, with `unload_to`, the unloading
     from there on by the same continuation (delta decreasing) to unload_to / R (< 0: a pull).
@@ -352,7 +352,8 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
     delta + push).  `progress(state)` is called after each state if given.
 
     `x0` the state at delta = 0 (default the undeformed one): the free shell under its
-    cavity's pressure, just touching the plane (cavity.first_touch, on its moved mesh).
+    cavity's pressure, just touching the plane (cavity.first_touch, on its moved mesh);
+    or, with `delta0` / R, an equilibrium at delta0 from which the path goes on.
 
     `interface` the tangential contact (contact.INTERFACES): "frictionless", or
     "no_slip": a quadrature point in contact is held radially at its radius at the last
@@ -398,7 +399,9 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
     x = np.zeros(d.ndof) if x0 is None else np.array(x0, dtype=float)
     if x.shape != (d.ndof,):
         raise ValueError(f"x0: shape {x.shape} must be ({d.ndof},)")
-    delta = 0.0
+    if not (math.isfinite(delta0) and 0 <= delta0 < delta_max) or (delta0 and x0 is None):
+        raise ValueError(f"delta0: {delta0!r} must be in [0, delta_max) and given with x0")
+    delta = float(delta0)
     K, r = cn.linearise(x)
     t = cn.tangent_at(K, c)
     states = [_state(cn, x, delta, K, r, t, 0, 0.0)]

@@ -1,0 +1,124 @@
+"""The sealed gripper in its working order: pressed, sealed, depressurised, pulled.
+
+A thin shell whose own cavity is closed at the rim by a rigid lid (solver.cavity) is
+pressed frictionless onto the plane by arc length (solver.snap.trace_loading) to
+delta_max with the cavity at ambient pressure and the pocket under its dimple vented;
+there the pocket's gas is sealed (ambient pressure, p_abs V^n constant: solver.pocket),
+the cavity's gauge pressure is lowered at fixed delta to p_c (< 0: the suction draws the
+dimple up against the sealed gas, whose pressure falls), and the rim is raised by the
+same continuation until the pocket opens or unload_to.  No adhesion.
+
+Dimensionless as the solver: lengths / R, forces / (C10 R^2), pressures / C10.  P > 0
+compresses; the pull-off is the most tensile P while the pocket is sealed (0 if none).
+"""
+from dataclasses import dataclass, replace
+import math
+
+import numpy as np
+
+from shell_adhesion.errors import ConvergenceError, InputError
+
+from .arclength import ArcSettings, _Continuation
+from .cavity import Cavity
+from .cohesive import Interface
+from .contact import constraints, rim_load
+from .pocket import Pocket, bind_depressurised, seal
+from .snap import PenaltyContact, SnapPath, SnapSettings, trace_loading
+
+
+@dataclass(frozen=True)
+class RampStep:
+    """An equilibrium of the ramp of the cavity's pressure at fixed delta."""
+
+    p_c: float          # the cavity's gauge pressure / C10
+    P: float            # rim load / (C10 R^2)
+    p: float            # the pocket's gauge pressure / C10
+    V: float            # the pocket's volume / R^3
+    r_seal: float       # the seal's radius / R
+
+
+@dataclass(frozen=True, eq=False)
+class Grip:
+    """The three stages: `press` (SnapPath), `ramp` (RampStep, ...), `pull` (SnapPath,
+    from the depressurised state; None if the ramp did not get there), and `ended_by`
+    ("" if the pull reached where the pocket opens or unload_to)."""
+
+    press: SnapPath
+    ramp: tuple
+    pull: SnapPath
+    ended_by: str
+
+    def pull_off(self) -> tuple:
+        """(P*, state): the most tensile rim load / (C10 R^2) while the pocket is sealed,
+        over the ramp's end and the pull (0 and None if P stays compressive), with the
+        SnapState of the pull where it is reached (None: at the ramp's end)."""
+        states = [s for s in (self.pull.states if self.pull else ()) if s.sealed]
+        if not states:
+            return 0.0, None
+        k = int(np.argmin([s.P for s in states]))
+        return min(states[k].P, 0.0), (states[k] if states[k].P < 0 else None)
+
+    def ideal_suction(self, p_atm: float) -> float:
+        """p_a pi r_seal^2 at the largest seal radius while sealed (C10 R^2)."""
+        radii = [s.r_seal for s in self.pull.states if s.sealed] if self.pull else []
+        radii += [s.r_seal for s in self.ramp]
+        return p_atm * math.pi * max(radii) ** 2
+
+
+def grip(d, delta_max: float, p_c: float, p_atm: float, n: float = 1.0,
+         unload_to: float = None, settings: SnapSettings = SnapSettings(),
+         ramp_steps: int = 4, max_steps: int = 100) -> Grip:
+    """Press the shell `d` (a forms.Discretisation, no cavity bound) to delta_max / R,
+    seal the pocket, lower the cavity's gauge pressure to p_c / C10 (<= 0) at fixed delta
+    in about `ramp_steps` steps (a step that fails is halved; at most `max_steps` tries),
+    and pull to unload_to / R (default -delta_max).  Raises InputError for p_c > 0 or
+    p_c + p_atm < 0; a stage that fails ends the Grip early with `ended_by` saying where."""
+    if not (math.isfinite(p_c) and -p_atm <= p_c <= 0):
+        raise InputError(f"p_c: {p_c!r} must be a gauge pressure in [-p_atm, 0] "
+                         f"(p_atm = {p_atm:g} C10)")
+    unload_to = -delta_max if unload_to is None else unload_to
+    d, x0, _ = bind_depressurised(d, Pocket("vented"), Cavity("pressure", p=0.0, p_atm=p_atm))
+    press = trace_loading(d, delta_max, replace(settings, seal_at_turn=False), x0=x0)
+    if press.ended_by:
+        return Grip(press, (), None, f"the press stopped: {press.ended_by}")
+    x, delta = press.states[-1].x.copy(), press.states[-1].delta
+    load = d.cavity
+    try:
+        d = seal(replace(d, cavity=replace(load, pocket=Pocket("sealed", p_atm, n))), x)
+    except ValueError as err:
+        return Grip(press, (), None, f"nothing to seal at delta_max: {err}")
+    at = lambda p: replace(d, cavity=replace(d.cavity, shell=replace(              # noqa: E731
+        d.cavity.shell, cavity=Cavity("pressure", p=p, p_atm=p_atm))))
+    ramp, f, h = [], 0.0, 1.0 / ramp_steps
+    fixed = (np.zeros(d.ndof), 1.0)
+    arc = ArcSettings(tol=settings.tol, max_iter=settings.max_iter)
+    law = PenaltyContact(settings.stiffness, settings.onset)
+    for _ in range(max_steps):
+        if f >= 1.0 - 1e-12 or p_c == 0:
+            break
+        h = min(h, 1.0 - f)
+        dp = at((f + h) * p_c)
+        cn = _Continuation(Interface(dp, law, None), "frictionless", arc)
+        c = constraints(dp, "frictionless", [])
+        try:
+            z, _, _, r, _ = cn.correct(c, x.copy(), delta, fixed, 0.0)
+        except ConvergenceError:
+            h /= 2
+            if h < 1e-3:
+                break
+            continue
+        if dp.cavity.is_open(z):
+            return Grip(press, tuple(ramp), None,
+                        f"the pocket opened at p_c = {(f + h) * p_c:.4g} C10 on the ramp")
+        f, x = f + h, z
+        V, p, r_seal = dp.cavity.measure(x)
+        ramp.append(RampStep(f * p_c, rim_load(dp, r), p, V, r_seal))
+        h = min(2 * h, 1.0 / ramp_steps)
+    if p_c != 0 and f < 1.0 - 1e-12:
+        return Grip(press, tuple(ramp), None,
+                    f"the ramp stopped at p_c = {f * p_c:.4g} C10 of {p_c:.4g} (a step of "
+                    f"1e-3 of it failed, or {max_steps} tries)")
+    pull = trace_loading(at(p_c), delta * (1 + 1e-9), replace(settings, seal_at_turn=False),
+                         unload_to=unload_to, x0=x, delta0=delta)
+    ends = pull.ended_by.startswith("pocket opened") or not pull.ended_by
+    return Grip(press, tuple(ramp), pull, "" if ends else f"the pull stopped: {pull.ended_by}")

@@ -38,6 +38,15 @@ SHELL = ["--R", "20", "--h", "20", "--C10", "0.3"]
      "--ring-adhesion: needs the loading alone, vented and frictionless, not --unload-to"),
     (["--t", "0.4", "--ring-adhesion", "1", "--interface", "no_slip"],
      "--ring-adhesion: needs the loading alone, vented and frictionless, not --interface"),
+    (["--t", "0.4", "--cavity-kPa", "-0.5"], "--cavity-kPa: needs --pocket sealed, not vented"),
+    (["--t", "0.4", "--pocket", "sealed", "--cavity-kPa", "0.5"],
+     "--cavity-kPa: 0.5 must be a gauge pressure in [-101.325, 0] kPa"),
+    (["--t", "0.4", "--pocket", "sealed", "--cavity-kPa", "-200"],
+     "--cavity-kPa: -200 must be a gauge pressure in [-101.325, 0] kPa"),
+    (["--t", "0.4", "--pocket", "sealed", "--seal", "ring", "--cavity-kPa", "-0.5"],
+     "--cavity-kPa: needs --seal turn, not ring"),
+    (["--t", "0.4", "--pocket", "sealed", "--interface", "no_slip", "--cavity-kPa", "-0.5"],
+     "--cavity-kPa: needs --interface frictionless, not no_slip"),
 ])
 def test_bad_input_is_one_line_and_exit_2(args, says, capsys, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
@@ -199,3 +208,33 @@ def test_the_zero_range_limit_by_the_energy_method(capsys):
     assert main(args) == 0
     assert "adhesion the ring survives (zero range, energy method): gamma_c 0.24" in \
         capsys.readouterr().out
+
+
+def test_the_gripper_order_holds_a_pull_in_newtons(capsys, tmp_path):
+    """`--cavity-kPa`: pressed, sealed at the turn, the cavity at -0.48 kPa (half of p_cl =
+    8 C10 (t/R)^2 = 0.96 kPa), pulled: the solver's P* -4.417e-4 C10 R^2
+    (test_depressurised_pocket.py) is -0.0530 N for C10 R^2 = 120 N (coarser mesh, 5 s)."""
+    args = ["snap", *SHELL, *SEALED, "--cavity-kPa", "-0.48"]
+    assert main([*args, "--json", "--csv", str(tmp_path / "g.csv")]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["failed"] == "" and out["energy_balance"] < 1e-4
+    cav = out["cavity"]
+    assert cav["reached"] and cav["ramp"][-1]["p_c_kPa"] == pytest.approx(-0.48, rel=1e-12)
+    assert cav["delta_mm"] == pytest.approx(out["turn_delta_mm"])
+    # the suction draws the dimple up: the pocket's gas and the rim load fall on the ramp
+    assert all(b["p_kPa"] < a["p_kPa"] and b["P_N"] < a["P_N"]
+               for a, b in zip(cav["ramp"], cav["ramp"][1:]))
+    pk = out["pocket"]
+    assert pk["opened"] and pk["least_P_N"] == pytest.approx(-4.417e-4 * 120, rel=2e-3)
+    assert pk["pull_off_N"] == pytest.approx(-pk["least_P_N"])
+    assert pk["sealed_at_mm"] == pytest.approx(out["turn_delta_mm"])
+    # where the ring opens the gas alone holds the rim (the contact's printed radius
+    # is its first quadrature point's, 0.3 % outside the seal's edge here)
+    last = out["states"][-1]
+    r_seal = float(last["contact"].split()[1].split("-")[0])
+    assert last["P_N"] == pytest.approx(1e-3 * last["p_kPa"] * math.pi * r_seal ** 2, rel=1e-2)
+    assert len(list(csv.DictReader((tmp_path / "g.csv").open()))) == len(out["states"])
+    assert main(args) == 0
+    text = capsys.readouterr().out
+    assert "cavity brought to -0.48 kPa at fixed delta" in text
+    assert "pull-off while sealed 0.0530" in text

@@ -23,7 +23,7 @@ from .cavity import Cavity
 from .cohesive import Interface
 from .contact import constraints, rim_load
 from .pocket import Pocket, bind_depressurised, seal
-from .snap import PenaltyContact, SnapPath, SnapSettings, trace_loading
+from .snap import PenaltyContact, SnapPath, SnapSettings, _append, _sum, trace_loading
 
 
 @dataclass(frozen=True)
@@ -58,6 +58,20 @@ class Grip:
         k = int(np.argmin([s.P for s in states]))
         return min(states[k].P, 0.0), (states[k] if states[k].P < 0 else None)
 
+    def path(self) -> SnapPath:
+        """The press and the pull as one SnapPath (turn: the pull's turn): the ramp is a
+        step at fixed delta, the energy it adds (U + Pi + E_gas after minus before, the
+        cavity's load now counted in E_gas) the press's last state's anchor_jump, so
+        that SnapPath.energy_miss balances across it.  Without a pull, the press."""
+        if self.pull is None:
+            return replace(self.press, ended_by=self.ended_by)
+        states = list(self.press.states)
+        _append(states, self.pull.states[0], at_same_delta=True)
+        states += self.pull.states[1:]
+        return SnapPath(tuple(states), self.pull.ended_by,
+                        _sum([self.press.timer, self.pull.timer]),
+                        len(self.press.states) + self.pull.turn)
+
     def ideal_suction(self, p_atm: float) -> float:
         """p_a pi r_seal^2 at the largest seal radius while sealed (C10 R^2)."""
         radii = [s.r_seal for s in self.pull.states if s.sealed] if self.pull else []
@@ -67,18 +81,20 @@ class Grip:
 
 def grip(d, delta_max: float, p_c: float, p_atm: float, n: float = 1.0,
          unload_to: float = None, settings: SnapSettings = SnapSettings(),
-         ramp_steps: int = 4, max_steps: int = 100) -> Grip:
+         ramp_steps: int = 4, max_steps: int = 100, progress=None) -> Grip:
     """Press the shell `d` (a forms.Discretisation, no cavity bound) to delta_max / R,
     seal the pocket, lower the cavity's gauge pressure to p_c / C10 (<= 0) at fixed delta
     in about `ramp_steps` steps (a step that fails is halved; at most `max_steps` tries),
     and pull to unload_to / R (default -delta_max).  Raises InputError for p_c > 0 or
-    p_c + p_atm < 0; a stage that fails ends the Grip early with `ended_by` saying where."""
+    p_c + p_atm < 0; a stage that fails ends the Grip early with `ended_by` saying where.
+    `progress(state)` after each state of the press and of the pull."""
     if not (math.isfinite(p_c) and -p_atm <= p_c <= 0):
         raise InputError(f"p_c: {p_c!r} must be a gauge pressure in [-p_atm, 0] "
                          f"(p_atm = {p_atm:g} C10)")
     unload_to = -delta_max if unload_to is None else unload_to
     d, x0, _ = bind_depressurised(d, Pocket("vented"), Cavity("pressure", p=0.0, p_atm=p_atm))
-    press = trace_loading(d, delta_max, replace(settings, seal_at_turn=False), x0=x0)
+    press = trace_loading(d, delta_max, replace(settings, seal_at_turn=False), progress,
+                          x0=x0)
     if press.ended_by:
         return Grip(press, (), None, f"the press stopped: {press.ended_by}")
     x, delta = press.states[-1].x.copy(), press.states[-1].delta
@@ -118,7 +134,7 @@ def grip(d, delta_max: float, p_c: float, p_atm: float, n: float = 1.0,
         return Grip(press, tuple(ramp), None,
                     f"the ramp stopped at p_c = {f * p_c:.4g} C10 of {p_c:.4g} (a step of "
                     f"1e-3 of it failed, or {max_steps} tries)")
-    pull = trace_loading(at(p_c), delta * (1 + 1e-9), replace(settings, seal_at_turn=False),
+    pull = trace_loading(at(p_c), delta, replace(settings, seal_at_turn=False), progress,
                          unload_to=unload_to, x0=x, delta0=delta)
     ends = pull.ended_by.startswith("pocket opened") or not pull.ended_by
     return Grip(press, tuple(ramp), pull, "" if ends else f"the pull stopped: {pull.ended_by}")

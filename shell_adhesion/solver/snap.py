@@ -353,7 +353,8 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
 
     `x0` the state at delta = 0 (default the undeformed one): the free shell under its
     cavity's pressure, just touching the plane (cavity.first_touch, on its moved mesh);
-    or, with `delta0` / R, an equilibrium at delta0 from which the path goes on.
+    or, with `delta0` / R, an equilibrium at delta0 from which the path goes on (with
+    delta0 = delta_max: the unloading from there, the first state the turn).
 
     `interface` the tangential contact (contact.INTERFACES): "frictionless", or
     "no_slip": a quadrature point in contact is held radially at its radius at the last
@@ -399,14 +400,19 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
     x = np.zeros(d.ndof) if x0 is None else np.array(x0, dtype=float)
     if x.shape != (d.ndof,):
         raise ValueError(f"x0: shape {x.shape} must be ({d.ndof},)")
-    if not (math.isfinite(delta0) and 0 <= delta0 < delta_max) or (delta0 and x0 is None):
-        raise ValueError(f"delta0: {delta0!r} must be in [0, delta_max) and given with x0")
+    if not (math.isfinite(delta0) and 0 <= delta0 <= delta_max) or (delta0 and x0 is None) \
+            or (delta0 == delta_max and unload_to is None):
+        raise ValueError(f"delta0: {delta0!r} must be in [0, delta_max] and given with x0 "
+                         "(at delta_max: the unloading from there, with unload_to)")
     delta = float(delta0)
     K, r = cn.linearise(x)
     t = cn.tangent_at(K, c)
     states = [_state(cn, x, delta, K, r, t, 0, 0.0)]
     ds = s.ds_first
     turn = -1
+    if delta0 == delta_max:         # the unloading from x0
+        turn = 0
+        t = (-t[0], -t[1])
     ended_by = f"state limit: {s.max_states} states"
     clock = time.perf_counter()
     while len(states) < s.max_states:

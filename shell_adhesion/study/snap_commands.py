@@ -5,7 +5,7 @@ optionally pulled back with the pocket under its dimple vented or sealed
     shell-adhesion snap --R 20 --t 0.4 --h 20 --C10 0.3 [--delta-max 4] [--unload-to -0.4]
         [--pocket vented|sealed] [--seal turn|ring] [--gas-exponent 1] [--p-atm-kPa 101.325]
         [--interface frictionless|no_slip] [--stick turn|touch] [--mesh coarse]
-        [--ring-adhesion LAMBDA|zero] [--json] [--csv FILE] [--plot FILE]
+        [--ring-adhesion LAMBDA|zero] [--cavity-kPa P] [--json] [--csv FILE] [--plot FILE]
 
 Prints the jumps under displacement control (from which state to which), the first ring,
 the states (every state whose contact set changes shape and about 30 more), the pocket's
@@ -29,7 +29,8 @@ from .progress import bar
 FLAGS = dict(R_mm="--R", t_mm="--t", h_mm="--h", C10_MPa="--C10", delta_max_mm="--delta-max",
              unload_to_mm="--unload-to", pocket="--pocket", gas_exponent="--gas-exponent",
              p_atm_kPa="--p-atm-kPa", seal="--seal", interface="--interface", stick="--stick",
-             mesh="--mesh", contact="--contact", ring_adhesion="--ring-adhesion")
+             mesh="--mesh", contact="--contact", ring_adhesion="--ring-adhesion",
+             cavity_kPa="--cavity-kPa")
 ROWS = 30              # about this many states in the printed table
 
 
@@ -84,6 +85,11 @@ def add_parser(sub, one_dash):
                         "Dugdale law of Tabor parameter LAMBDA, e.g. 0.3, a few minutes; "
                         "or zero: zero-range adhesion by the energy method at the ring's "
                         "two edges, faster); above it the dimple closes")
+    s.add_argument("--cavity-kPa", dest="cavity_kPa", default=None, metavar="P",
+                   help="with --pocket sealed: the gripper's order: pressed with the shell's "
+                        "own cavity (closed by a rigid lid at the rim) at ambient pressure, "
+                        "the pocket sealed at the turn, the cavity brought to the gauge "
+                        "pressure P [kPa] (<= 0) at fixed delta, then pulled")
     s.add_argument("--gamma", default=None, help=argparse.SUPPRESS)
     s.add_argument("--json", action="store_true", help="print JSON (every state) instead of text")
     s.add_argument("--csv", default=None, metavar="FILE", help="write every state as CSV")
@@ -111,7 +117,8 @@ def run(ns) -> int:
         ("R_mm", "R", "mm"), ("t_mm", "t", "mm"), ("h_mm", "h", "mm"),
         ("C10_MPa", "C10", "MPa"), ("delta_max_mm", "delta_max", "mm"),
         ("unload_to_mm", "unload_to", "mm"), ("gas_exponent", "gas_exponent", "1"),
-        ("p_atm_kPa", "p_atm_kPa", "kPa"), ("ring_adhesion", "ring_adhesion", "1"))}
+        ("p_atm_kPa", "p_atm_kPa", "kPa"), ("ring_adhesion", "ring_adhesion", "1"),
+        ("cavity_kPa", "cavity_kPa", "kPa"))}
     if numbers["p_atm_kPa"] is None:
         del numbers["p_atm_kPa"]
     if zero:
@@ -208,10 +215,17 @@ def report(result) -> str:
     if out["turn_delta_mm"] is not None:
         lines.append(f"turned at delta {out['turn_delta_mm']:.4g} mm; least P unloading "
                      f"{out['least_P_unloading_N']:+.4g} N")
-    pk = out["pocket"]
+    pk, cav = out["pocket"], out["cavity"]
     if pk:
         lines.append(f"pocket sealed at delta {pk['sealed_at_mm']:.4g} mm: {pk['V0_mm3']:.4g} "
                      f"mm^3 inside a seal of radius {pk['seal_radius_mm']:.4g} mm")
+        if cav and cav["ramp"]:
+            b = cav["ramp"][-1]
+            lines.append(f"cavity brought to {b['p_c_kPa']:+.4g} kPa"
+                         + ("" if cav["reached"] else f" of the {cav['p_kPa']:+.4g} asked")
+                         + f" at fixed delta in {len(cav['ramp'])} steps: P "
+                         f"{cav['P_sealed_N']:+.4g} -> {b['P_N']:+.4g} N, pocket gauge 0 -> "
+                         f"{b['p_kPa']:+.4g} kPa")
         lines.append(("opened" if pk["opened"] else "still sealed")
                      + f" at delta {pk['last_delta_mm']:.4g} mm: gauge {pk['last_p_kPa']:+.4g} "
                      f"kPa, P {pk['last_P_N']:+.4g} N; gauge pressure from "
@@ -231,7 +245,8 @@ def report(result) -> str:
     elif ring:
         lines.append(f"adhesion the ring survives: not bracketed ({ring['why']})")
     ok = out["energy_balance"] <= thin_shell.ENERGY_TOL
-    lines.append(f"energy balance: |work of P - strain - contact - gas energy| <= "
+    lines.append("energy balance: |work of P - strain - contact - gas energy"
+                 + (" - the cavity's load" if cav else "") + "| <= "
                  f"{out['energy_balance']:.2g} of max strain energy"
                  + ("" if ok else f": ABOVE {thin_shell.ENERGY_TOL:g}, the path is not "
                     "to be trusted (steps too coarse through a fold)"))

@@ -22,6 +22,7 @@ from shell_adhesion.solver import pocket as pk
 from shell_adhesion.solver.cavity import P_ATM_KPA
 from shell_adhesion.solver.contact import INTERFACES
 from shell_adhesion.solver.forms import discretise
+from shell_adhesion.solver.grip import grip
 from shell_adhesion.solver.geometry import DEPTH_SHARE, check_delta_max, domain_delta_max
 from shell_adhesion.solver.mesh import cap_mesh, mesh_spec
 from shell_adhesion.solver.scaling import (check_C10, check_finite, check_R, force_N,
@@ -51,7 +52,7 @@ API_NAMES = dict(R_mm="R_mm", t_mm="t_mm", h_mm="h_mm", C10_MPa="C10_MPa",
                  delta_max_mm="delta_max_mm", unload_to_mm="unload_to_mm", pocket="pocket",
                  gas_exponent="gas_exponent", p_atm_kPa="p_atm_kPa", seal="seal",
                  interface="interface", stick="stick", mesh="mesh", contact="contact",
-                 ring_adhesion="ring_adhesion")
+                 ring_adhesion="ring_adhesion", cavity_kPa="cavity_kPa")
 RING_REL = 0.05                    # the bracket of gamma_c: its ends this far apart
 ZERO_RANGE = "zero"                # ring_adhesion: zero-range adhesion (the energy method)
 
@@ -76,6 +77,8 @@ class SnapInput:
     contact: str = "soft"
     ring_adhesion: float = None    # a Tabor parameter: bracket gamma_c at the last ring
     #                                (ZERO_RANGE, "zero": by the energy method)
+    cavity_kPa: float = None       # the gripper's order (solver.grip): the cavity brought
+    #                                to this gauge pressure after the pocket sealed
 
     @property
     def p_atm_over_C10(self) -> float:
@@ -85,7 +88,7 @@ class SnapInput:
 def snap_input(R_mm, t_mm, h_mm, C10_MPa, delta_max_mm=None, unload_to_mm=None,
                pocket="vented", gas_exponent=1.0, p_atm_kPa=P_ATM_KPA, seal="turn",
                interface="frictionless", stick="turn", mesh="coarse", contact="soft",
-               ring_adhesion=None, names=None) -> SnapInput:
+               ring_adhesion=None, cavity_kPa=None, names=None) -> SnapInput:
     """The checked input; InputError (one line naming the field as `names` calls it,
     default API_NAMES) on the first rule broken.  delta_max defaults to 10 t (at most
     the domain's bound); a sealed pocket without unload_to is pulled to -t.  `contact`
@@ -145,8 +148,18 @@ def snap_input(R_mm, t_mm, h_mm, C10_MPa, delta_max_mm=None, unload_to_mm=None,
             if value != need:
                 raise InputError(f"{n['ring_adhesion']}: needs the loading alone, vented "
                                  f"and frictionless, not {n[key]} {value}")
+    if cavity_kPa is not None:
+        cavity_kPa = check_finite(cavity_kPa, n["cavity_kPa"], "kPa")
+        if not -p_atm_kPa <= cavity_kPa <= 0:
+            raise InputError(f"{n['cavity_kPa']}: {cavity_kPa:g} must be a gauge pressure in "
+                             f"[-{p_atm_kPa:g}, 0] kPa (suction; the absolute pressure >= 0)")
+        for key, value, need in (("pocket", pocket, "sealed"), ("seal", seal, "turn"),
+                                 ("interface", interface, "frictionless"),
+                                 ("ring_adhesion", ring_adhesion, None)):
+            if value != need:
+                raise InputError(f"{n['cavity_kPa']}: needs {n[key]} {need}, not {value}")
     return SnapInput(R, t, h, C10, delta_max, unload_to_mm, pocket, gas_exponent, p_atm_kPa,
-                     seal, interface, stick, mesh, contact, ring_adhesion)
+                     seal, interface, stick, mesh, contact, ring_adhesion, cavity_kPa)
 
 
 @dataclass(frozen=True)
@@ -159,6 +172,7 @@ class SnapResult:
     ring_limit: tuple = None       # (lo, hi) solver.ring_adhesion.RingAdhesion results
     #                                (zero range: solver.ring_energy.Settled)
     ring_why: str = ""             # why ring_adhesion was asked and not bracketed
+    ramp: tuple = ()               # cavity_kPa: the ramp at fixed delta (solver.grip.RampStep)
 
     def mm(self, v):
         return v * self.input.R_mm
@@ -233,6 +247,8 @@ class SnapResult:
         p = np.array([s.p for _, s in sealed])
         r_max = max(s.r_seal for _, s in sealed)
         first, last = sealed[0][1], sealed[-1][1]
+        if self.input.cavity_kPa is not None:       # sealed before the cavity's ramp
+            first = dataclasses.replace(self.path.states[sealed[0][0] - 1], sealed=True)
         return dict(sealed_at_mm=self.mm(first.delta), V0_mm3=self.input.R_mm ** 3 * first.V,
                     seal_radius_mm=self.mm(first.r_seal),
                     opened=self.path.ended_by.startswith("pocket opened"),
@@ -242,6 +258,21 @@ class SnapResult:
                     least_P_N=self.N(P.min()),
                     ideal_suction_N=self.N(self.input.p_atm_over_C10 * math.pi * r_max ** 2),
                     p_min_kPa=self.kPa(p.min()), p_max_kPa=self.kPa(p.max()))
+
+    def cavity(self):
+        """With cavity_kPa: the ramp at fixed delta (delta_mm, the rim load P_sealed_N where
+        the pocket sealed; per step the cavity's gauge pressure p_c_kPa, the rim load P_N,
+        the pocket's gauge pressure p_kPa); else None."""
+        if self.input.cavity_kPa is None:
+            return None
+        turn = self.path.turn
+        sealed_at = self.path.states[turn - 1 if turn > 0 else -1]
+        return dict(p_kPa=self.input.cavity_kPa,
+                    delta_mm=self.mm(self.path.states[turn].delta) if turn >= 0 else None,
+                    P_sealed_N=self.N(sealed_at.P),
+                    reached=turn >= 0,
+                    ramp=[dict(p_c_kPa=self.kPa(r.p_c), P_N=self.N(r.P), p_kPa=self.kPa(r.p))
+                          for r in self.ramp])
 
     def gamma_J_m2(self, g):
         """gamma / (C10 R) in J/m^2 (the inverse of scaling.gamma_hat)."""
@@ -278,7 +309,7 @@ class SnapResult:
                     least_P_unloading_N=(self.N(min(x.P for x in s[self.path.turn:]))
                                          if self.path.turn >= 0 else None),
                     pocket=self.pocket(), energy_balance=self.energy_miss,
-                    ring_adhesion=self.ring_adhesion(),
+                    ring_adhesion=self.ring_adhesion(), cavity=self.cavity(),
                     newton_iterations=self.path.timer.newton_iterations,
                     states=self.states())
 
@@ -312,6 +343,10 @@ def trace_snap(inp: SnapInput, progress=None) -> SnapResult:
     if inp.contact == "sharp":
         settings = dataclasses.replace(settings, ds_max=min(settings.ds_max, SHARP_DS_MAX))
     unload_to = None if inp.unload_to_mm is None else inp.unload_to_mm / inp.R_mm
+    if inp.cavity_kPa is not None:
+        g = grip(d, delta_max, inp.cavity_kPa / (1000.0 * inp.C10_MPa), inp.p_atm_over_C10,
+                 inp.gas_exponent, unload_to, settings, progress=progress)
+        return SnapResult(inp, g.path(), int(d.ndof) + 1, ramp=g.ramp)
     path = trace_loading(d, delta_max, settings, progress, unload_to=unload_to,
                          interface=inp.interface)
     if inp.ring_adhesion is None:

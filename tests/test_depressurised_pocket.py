@@ -181,3 +181,25 @@ def test_the_grip_on_the_coarse_mesh():
     for fraction, coarser in ((0.5, -4.4173e-4), (1.0, -1.1081e-3)):
         Pstar, _ = _grip(fraction, "coarse").pull_off()
         assert Pstar == pytest.approx(coarser, rel=0.015)
+
+
+def test_vented_the_suction_lets_the_ring_go_and_adiabatic_gas_holds_as_isothermal():
+    # vented, the same ramp draws the dimple up off the plane: P falls towards 0 (the
+    # ring lets go near 0.18 p_cl) and is never tensile; the sealed gas at n = 1.4 holds
+    # the pull as at n = 1 (it expands by less than 1 %): P* -4.414e-4 against -4.417e-4
+    vented = grip(_d(), DELTA_MAX, -0.5 * P_CL, P_ATM, pocket="vented")
+    assert vented.pull is None and vented.ended_by.startswith("the ramp stopped at")
+    P = [s.P for s in vented.ramp]
+    assert min(P) > 0 and P[-1] < 0.01 * vented.press.states[-1].P
+    assert vented.ramp[-1].p_c == pytest.approx(-0.18 * P_CL, abs=0.01 * P_CL)
+    adiabatic = grip(_d(), DELTA_MAX, -0.5 * P_CL, P_ATM, n=1.4)
+    assert adiabatic.ended_by == ""
+    assert adiabatic.pull_off()[0] == pytest.approx(-4.414e-4, abs=0.005e-4)
+    V0 = adiabatic.press.states[-1].V
+    for s in adiabatic.pull.states:
+        assert (s.p + P_ATM) * s.V ** 1.4 == pytest.approx(P_ATM * V0 ** 1.4, rel=1e-8)
+    assert adiabatic.pull.energy_miss() <= ENERGY
+    with pytest.raises(InputError, match="^pocket: 'open' must be one of sealed, vented"):
+        grip(_d(), DELTA_MAX, -0.5 * P_CL, P_ATM, pocket="open")
+    with pytest.raises(InputError, match="^p_c: 0.1 must be a gauge pressure"):
+        grip(_d(), DELTA_MAX, 0.1, P_ATM)

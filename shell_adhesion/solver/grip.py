@@ -49,10 +49,10 @@ class Grip:
     ended_by: str
 
     def pull_off(self) -> tuple:
-        """(P*, state): the most tensile rim load / (C10 R^2) while the pocket is sealed,
-        over the ramp's end and the pull (0 and None if P stays compressive), with the
-        SnapState of the pull where it is reached (None: at the ramp's end)."""
-        states = [s for s in (self.pull.states if self.pull else ()) if s.sealed]
+        """(P*, state): the most tensile rim load / (C10 R^2) along the pull, from the
+        ramp's end on (a sealed pull ends where the pocket opens), 0 and None if P stays
+        compressive, with the SnapState where it is reached."""
+        states = self.pull.states if self.pull else ()
         if not states:
             return 0.0, None
         k = int(np.argmin([s.P for s in states]))
@@ -76,14 +76,16 @@ class Grip:
         """p_a pi r_seal^2 at the largest seal radius while sealed (C10 R^2)."""
         radii = [s.r_seal for s in self.pull.states if s.sealed] if self.pull else []
         radii += [s.r_seal for s in self.ramp]
-        return p_atm * math.pi * max(radii) ** 2
+        return p_atm * math.pi * max(radii, default=math.nan) ** 2
 
 
 def grip(d, delta_max: float, p_c: float, p_atm: float, n: float = 1.0,
          unload_to: float = None, settings: SnapSettings = SnapSettings(),
-         ramp_steps: int = 4, max_steps: int = 100, progress=None) -> Grip:
+         ramp_steps: int = 4, max_steps: int = 100, progress=None,
+         pocket: str = "sealed") -> Grip:
     """Press the shell `d` (a forms.Discretisation, no cavity bound) to delta_max / R,
-    seal the pocket, lower the cavity's gauge pressure to p_c / C10 (<= 0) at fixed delta
+    seal the pocket (`pocket` "vented": leave it open, the comparison), lower the
+    cavity's gauge pressure to p_c / C10 (<= 0) at fixed delta
     in about `ramp_steps` steps (a step that fails is halved; at most `max_steps` tries),
     and pull to unload_to / R (default -delta_max).  Raises InputError for p_c > 0 or
     p_c + p_atm < 0; a stage that fails ends the Grip early with `ended_by` saying where.
@@ -91,6 +93,8 @@ def grip(d, delta_max: float, p_c: float, p_atm: float, n: float = 1.0,
     if not (math.isfinite(p_c) and -p_atm <= p_c <= 0):
         raise InputError(f"p_c: {p_c!r} must be a gauge pressure in [-p_atm, 0] "
                          f"(p_atm = {p_atm:g} C10)")
+    if pocket not in ("sealed", "vented"):
+        raise InputError(f"pocket: {pocket!r} must be one of sealed, vented")
     unload_to = -delta_max if unload_to is None else unload_to
     d, x0, _ = bind_depressurised(d, Pocket("vented"), Cavity("pressure", p=0.0, p_atm=p_atm))
     press = trace_loading(d, delta_max, replace(settings, seal_at_turn=False), progress,
@@ -99,10 +103,12 @@ def grip(d, delta_max: float, p_c: float, p_atm: float, n: float = 1.0,
         return Grip(press, (), None, f"the press stopped: {press.ended_by}")
     x, delta = press.states[-1].x.copy(), press.states[-1].delta
     load = d.cavity
-    try:
-        d = seal(replace(d, cavity=replace(load, pocket=Pocket("sealed", p_atm, n))), x)
-    except ValueError as err:
-        return Grip(press, (), None, f"nothing to seal at delta_max: {err}")
+    if pocket == "sealed":
+        try:
+            d = seal(replace(d, cavity=replace(load, pocket=Pocket("sealed", p_atm, n))), x)
+        except ValueError as err:
+            return Grip(press, (), None, f"nothing to seal at delta_max: {err}")
+
     at = lambda p: replace(d, cavity=replace(d.cavity, shell=replace(              # noqa: E731
         d.cavity.shell, cavity=Cavity("pressure", p=p, p_atm=p_atm))))
     ramp, f, h = [], 0.0, 1.0 / ramp_steps
@@ -131,9 +137,11 @@ def grip(d, delta_max: float, p_c: float, p_atm: float, n: float = 1.0,
         ramp.append(RampStep(f * p_c, rim_load(dp, r), p, V, r_seal))
         h = min(2 * h, 1.0 / ramp_steps)
     if p_c != 0 and f < 1.0 - 1e-12:
+        P_now = ramp[-1].P if ramp else press.states[-1].P
         return Grip(press, tuple(ramp), None,
                     f"the ramp stopped at p_c = {f * p_c:.4g} C10 of {p_c:.4g} (a step of "
-                    f"1e-3 of it failed, or {max_steps} tries)")
+                    f"1e-3 of it failed, or {max_steps} tries), P {P_now:.3g} C10 R^2 "
+                    f"against {press.states[-1].P:.3g} at the press's end")
     pull = trace_loading(at(p_c), delta, replace(settings, seal_at_turn=False), progress,
                          unload_to=unload_to, x0=x, delta0=delta)
     ends = pull.ended_by.startswith("pocket opened") or not pull.ended_by

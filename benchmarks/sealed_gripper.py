@@ -10,7 +10,8 @@ where the pocket opens (delta / t), its gauge pressure there / p_a, P* over the 
 suction force p_a pi r_seal^2, the pull's energy balance, and the wall time.
 Run: python benchmarks/sealed_gripper.py [--t 0.02] [--mesh coarser] [--delta-max 5]
 [--fractions 0,0.25,0.5,0.75,1] [--n 1.0] [--p-atm-kPa 101.325] [--C10-kPa 300]
-[--R-mm 20]  (--delta-max in thicknesses t).  Bad input: one line, exit 2.
+[--R-mm 20] [--figure PNG]  (--delta-max in thicknesses t; --figure: P against delta along
+each pull, and P* against the suction).  Bad input: one line, exit 2.
 """
 import argparse
 import sys
@@ -34,6 +35,7 @@ def main(argv=None):
     ap.add_argument("--p-atm-kPa", type=float, default=101.325)
     ap.add_argument("--C10-kPa", type=float, default=300.0)
     ap.add_argument("--R-mm", type=float, default=20.0)
+    ap.add_argument("--figure", default=None)
     a = ap.parse_args(argv)
     T = a.t
     try:
@@ -56,11 +58,13 @@ def main(argv=None):
           "P* [N] | opens at delta / t | gauge there / p_a | P* / ideal suction | "
           "energy balance | s |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    grips = []
     for f in fractions:
         t0 = time.perf_counter()
         d = discretise(cap_mesh(cap, mesh_spec(a.mesh, ring_arc(a.delta_max * T))))
         g = grip(d, a.delta_max * T, -f * p_cl, p_atm, a.n)
         wall = time.perf_counter() - t0
+        grips.append((f, g))
         ramp = f"{g.ramp[-1].P:+.4e}" if g.ramp else "-"
         if g.ended_by:
             print(f"| {f:g} | {-f * p_cl * a.C10_kPa + 0.0:.4g} | {ramp} | {g.ended_by} | | | | | | "
@@ -71,7 +75,40 @@ def main(argv=None):
         print(f"| {f:g} | {-f * p_cl * a.C10_kPa + 0.0:.4g} | {ramp} | {P:+.4e} | "
               f"{P * force_N:+.4g} | {last.delta / T:.3f} | {last.p / p_atm:+.5f} | "
               f"{-P / g.ideal_suction(p_atm):.4f} | {g.pull.energy_miss():.1e} | {wall:.1f} |")
+    if a.figure:
+        _figure(grips, T, force_N, p_cl * a.C10_kPa, a.figure)
     return 0
+
+
+def _figure(grips, T, force_N, p_cl_kPa, out):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(10, 4))
+    done = [(f, g) for f, g in grips if g.pull is not None]
+    for k, (f, g) in enumerate(done):
+        path = g.path()
+        D, P = path.array("delta") / T, path.array("P") * force_N
+        ax.plot(D[:path.turn + 1], P[:path.turn + 1], color="0.6", lw=0.8,
+                label="press (pocket vented)" if k == 0 else None)
+        ax.plot(D[path.turn:], P[path.turn:], color=f"C{k}", lw=1.4,
+                label=f"pull, cavity at {-f + 0.0:g} p_cl")
+        ax.plot(D[path.turn - 1:path.turn + 1], P[path.turn - 1:path.turn + 1], ":",
+                color=f"C{k}")
+    ax.axhline(0.0, color="k", lw=0.6)
+    ax.set_xlim(3.8, None)
+    ax.set_ylim(-0.2, 0.12)
+    ax.set_xlabel("rim approach delta / t")
+    ax.set_ylabel("rim load P [N] (> 0 compression)")
+    ax.legend(fontsize=7)
+    ax.set_title("pressed, sealed, depressurised (dotted), pulled", fontsize=9)
+    F = [f for f, _ in done]
+    bx.plot(F, [-g.pull_off()[0] * force_N for _, g in done], "ko-")
+    bx.set_xlabel(f"cavity suction / p_cl (p_cl = {p_cl_kPa:.3g} kPa)")
+    bx.set_ylabel("pull-off -P* [N]")
+    bx.set_title("the sealed pocket's pull-off against the suction", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(out, dpi=120)
 
 
 if __name__ == "__main__":

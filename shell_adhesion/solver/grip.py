@@ -26,6 +26,12 @@ from .pocket import Pocket, bind_depressurised, seal
 from .snap import PenaltyContact, SnapPath, SnapSettings, _append, _sum, trace_loading
 
 
+PULL_DS_MAX = 0.002     # the pull's largest arc step / R: with the loading's 0.01 the
+#                         pull's energy balance missed by up to 2.5e-4 of max |dU| (t/R 0.02,
+#                         0.75 p_cl, coarser mesh; the ring's edges crossing elements), with
+#                         0.002 by less than 7e-6 at the same P* (to 1e-5)
+
+
 @dataclass(frozen=True)
 class RampStep:
     """An equilibrium of the ramp of the cavity's pressure at fixed delta."""
@@ -142,7 +148,9 @@ def grip(d, delta_max: float, p_c: float, p_atm: float, n: float = 1.0,
                     f"the ramp stopped at p_c = {f * p_c:.4g} C10 of {p_c:.4g} (a step of "
                     f"1e-3 of it failed, or {max_steps} tries), P {P_now:.3g} C10 R^2 "
                     f"against {press.states[-1].P:.3g} at the press's end")
-    pull = trace_loading(at(p_c), delta, replace(settings, seal_at_turn=False), progress,
+    pull = trace_loading(at(p_c), delta, replace(settings, seal_at_turn=False,
+                                                 ds_max=min(settings.ds_max, PULL_DS_MAX)),
+                         progress,
                          unload_to=unload_to, x0=x, delta0=delta)
     ends = pull.ended_by.startswith("pocket opened") or not pull.ended_by
     return Grip(press, tuple(ramp), pull, "" if ends else f"the pull stopped: {pull.ended_by}")

@@ -10,8 +10,10 @@ where the pocket opens (delta / t), its gauge pressure there / p_a, P* over the 
 suction force p_a pi r_seal^2, the pull's energy balance, and the wall time.
 Run: python benchmarks/sealed_gripper.py [--t 0.02] [--mesh coarser] [--delta-max 5]
 [--fractions 0,0.25,0.5,0.75,1] [--n 1.0] [--p-atm-kPa 101.325] [--C10-kPa 300]
-[--R-mm 20] [--figure PNG]  (--delta-max in thicknesses t; --figure: P against delta along
-each pull, and P* against the suction).  Bad input: one line, exit 2.
+[--R-mm 20] [--coarser MESH] [--figure PNG]  (--delta-max in thicknesses t; --coarser: each
+row solved on that mesh too, and P*'s error bar from the two (solver.error_bars.error_bar,
+the order of solver.error_bars.assumed_order); --figure: P against delta along each pull,
+and P* against the suction).  Bad input: one line, exit 2.
 """
 import argparse
 import sys
@@ -19,6 +21,7 @@ import time
 
 from shell_adhesion.errors import InputError
 from shell_adhesion.solver import pocket as pk
+from shell_adhesion.solver.error_bars import assumed_order, error_bar
 from shell_adhesion.solver.forms import discretise
 from shell_adhesion.solver.grip import grip
 from shell_adhesion.solver.mesh import cap_mesh, mesh_spec
@@ -35,6 +38,7 @@ def main(argv=None):
     ap.add_argument("--p-atm-kPa", type=float, default=101.325)
     ap.add_argument("--C10-kPa", type=float, default=300.0)
     ap.add_argument("--R-mm", type=float, default=20.0)
+    ap.add_argument("--coarser", default=None, help="the error bar's coarser mesh")
     ap.add_argument("--figure", default=None)
     a = ap.parse_args(argv)
     T = a.t
@@ -50,19 +54,26 @@ def main(argv=None):
         return 2
     force_N = a.C10_kPa * 1e-3 * a.R_mm ** 2          # C10 R^2 in N
     p_cl = 8 * T * T
-    print(f"t/R = {T:g}, h/R = 1, {a.mesh} mesh; pressed to {a.delta_max:g} t, sealed "
+    print(f"t/R = {T:g}, h/R = 1, {a.mesh} mesh; pressed exactly to {a.delta_max:g} t, sealed "
           f"(n = {a.n:g}, p_a/C10 = {p_atm:.4g}), depressurised, pulled; p_cl = "
           f"{p_cl * a.C10_kPa:.4g} kPa; forces in N for R = {a.R_mm:g} mm, C10 = "
           f"{a.C10_kPa:g} kPa")
+    order = assumed_order(T, a.mesh)
     print("| f = -p_c / p_cl | p_c [kPa] | P at the ramp's end [C10 R^2] | P* [C10 R^2] | "
           "P* [N] | opens at delta / t | gauge there / p_a | P* / ideal suction | "
-          "energy balance | s |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+          "energy balance | s |"
+          + (f" P* on {a.coarser} [C10 R^2] | bar (order {order:.3g}) [C10 R^2] | bar [N] |"
+             if a.coarser else ""))
+    print("| --- " * (13 if a.coarser else 10) + "|")
+
+    def solved(mesh, f):
+        d = discretise(cap_mesh(cap, mesh_spec(mesh, ring_arc(a.delta_max * T))))
+        return grip(d, a.delta_max * T, -f * p_cl, p_atm, a.n)
+
     grips = []
     for f in fractions:
         t0 = time.perf_counter()
-        d = discretise(cap_mesh(cap, mesh_spec(a.mesh, ring_arc(a.delta_max * T))))
-        g = grip(d, a.delta_max * T, -f * p_cl, p_atm, a.n)
+        g = solved(a.mesh, f)
         wall = time.perf_counter() - t0
         grips.append((f, g))
         ramp = f"{g.ramp[-1].P:+.4e}" if g.ramp else "-"
@@ -72,9 +83,16 @@ def main(argv=None):
             continue
         P, _ = g.pull_off()
         last = g.pull.states[-1]
+        extra = ""
+        if a.coarser:
+            gc = solved(a.coarser, f)
+            Pc = gc.pull_off()[0] if not gc.ended_by else float("nan")
+            bar = float(error_bar(P, Pc, order=order))
+            extra = f" {Pc:+.4e} | {bar:.2e} | {bar * force_N:.2g} |"
         print(f"| {f:g} | {-f * p_cl * a.C10_kPa + 0.0:.4g} | {ramp} | {P:+.4e} | "
               f"{P * force_N:+.4g} | {last.delta / T:.3f} | {last.p / p_atm:+.5f} | "
-              f"{-P / g.ideal_suction(p_atm):.4f} | {g.pull.energy_miss():.1e} | {wall:.1f} |")
+              f"{-P / g.ideal_suction(p_atm):.4f} | {g.pull.energy_miss():.1e} | {wall:.1f} |"
+              + extra)
     if a.figure:
         _figure(grips, T, force_N, p_cl * a.C10_kPa, a.figure)
     return 0

@@ -142,8 +142,8 @@ def _grip(fraction, mesh="coarser"):
 
 def test_pressed_sealed_then_depressurised_the_pocket_holds_a_pull():
     # benchmarks/sealed_gripper.py: pressed to 5 t, sealed, the cavity at -0.5 p_cl
-    # (-0.48 kPa at C10 0.3 MPa), pulled: P* -4.417e-4 C10 R^2 (-0.053 N at R 20 mm),
-    # the ring opening at 4.33 t with the gas at -0.0030 p_a
+    # (-0.48 kPa at C10 0.3 MPa), pulled: P* -4.361e-4 C10 R^2 (-0.052 N at R 20 mm),
+    # the ring opening at 4.29 t with the gas at -0.0030 p_a
     g = _grip(0.5)
     assert g.ended_by == ""
     # on the ramp the suction draws the dimple up: the pocket grows, its gas's pressure
@@ -152,15 +152,17 @@ def test_pressed_sealed_then_depressurised_the_pocket_holds_a_pull():
     assert len(g.ramp) >= 2 and g.ramp[-1].p_c == pytest.approx(-0.5 * P_CL, rel=1e-12)
     assert np.all(np.diff(p) < 0) and np.all(np.diff(V) > 0) and np.all(np.diff(P) < 0)
     turn = g.pull.states[0]
-    assert all(s.sealed for s in g.pull.states) and turn.delta == g.press.states[-1].delta >= DELTA_MAX
+    # pressed exactly to delta_max (the arc step past it brought back by Newton)
+    assert all(s.sealed for s in g.pull.states) and turn.delta == g.press.states[-1].delta
+    assert turn.delta == DELTA_MAX and g.press.states[-2].delta > DELTA_MAX
     V0 = g.press.states[-1].V       # sealed there at ambient pressure, isothermal
     for s in g.pull.states:
         assert (s.p + P_ATM) * s.V == pytest.approx(P_ATM * V0, rel=1e-8)
     Pstar, at = g.pull_off()
-    assert Pstar == pytest.approx(-4.417e-4, abs=0.005e-4)
+    assert Pstar == pytest.approx(-4.361e-4, abs=0.005e-4)
     assert g.pull.ended_by.startswith("pocket opened")
     last = g.pull.states[-1]
-    assert at is last and last.delta / T == pytest.approx(4.33, abs=0.01)
+    assert at is last and last.delta / T == pytest.approx(4.29, abs=0.01)
     assert last.p / P_ATM == pytest.approx(-0.0030, abs=0.00005)
     # where the ring opens it carries nothing: the gas's suction alone holds the rim
     assert last.P == pytest.approx(last.p * math.pi * last.r_seal ** 2, rel=1e-3)
@@ -172,15 +174,17 @@ def test_without_suction_the_sealed_pocket_gives_no_pull():
     g = _grip(0.0)
     assert g.ended_by == "" and g.ramp == ()
     assert g.pull_off() == (0.0, None)
-    assert g.pull.states[-1].delta / T == pytest.approx(4.69, abs=0.01)   # as test_pocket
+    # sealed at 5 t, the ring opens at 4.65 t (pressed to 5.04 t, test_pocket's: 4.69 t)
+    assert g.pull.states[-1].delta / T == pytest.approx(4.65, abs=0.01)
 
 
 @pytest.mark.slow
 def test_the_grip_on_the_coarse_mesh():
-    # two element layers against one: P* at -0.5 p_cl and -p_cl within 1.5 %
-    for fraction, coarser in ((0.5, -4.4173e-4), (1.0, -1.1081e-3)):
+    # two element layers against one: P* at -0.5 p_cl and -p_cl within 0.1 % (measured
+    # 0.02 % and 0.09 %; at 0.25 p_cl 0.28 %)
+    for fraction, coarser in ((0.5, -4.3613e-4), (1.0, -1.0967e-3)):
         Pstar, _ = _grip(fraction, "coarse").pull_off()
-        assert Pstar == pytest.approx(coarser, rel=0.015)
+        assert Pstar == pytest.approx(coarser, rel=1e-3)
 
 
 def test_vented_the_suction_lets_the_ring_go_and_adiabatic_gas_holds_as_isothermal():
@@ -191,10 +195,10 @@ def test_vented_the_suction_lets_the_ring_go_and_adiabatic_gas_holds_as_isotherm
     assert vented.pull is None and vented.ended_by.startswith("the ramp stopped at")
     P = [s.P for s in vented.ramp]
     assert min(P) > 0 and P[-1] < 0.01 * vented.press.states[-1].P
-    assert vented.ramp[-1].p_c == pytest.approx(-0.18 * P_CL, abs=0.01 * P_CL)
+    assert vented.ramp[-1].p_c == pytest.approx(-0.183 * P_CL, abs=0.01 * P_CL)
     adiabatic = grip(_d(), DELTA_MAX, -0.5 * P_CL, P_ATM, n=1.4)
     assert adiabatic.ended_by == ""
-    assert adiabatic.pull_off()[0] == pytest.approx(-4.414e-4, abs=0.005e-4)
+    assert adiabatic.pull_off()[0] == pytest.approx(-4.360e-4, abs=0.005e-4)
     V0 = adiabatic.press.states[-1].V
     for s in adiabatic.pull.states:
         assert (s.p + P_ATM) * s.V ** 1.4 == pytest.approx(P_ATM * V0 ** 1.4, rel=1e-8)

@@ -23,7 +23,8 @@ from .cavity import Cavity
 from .cohesive import Interface
 from .contact import constraints, rim_load
 from .pocket import Pocket, bind_depressurised, seal
-from .snap import PenaltyContact, SnapPath, SnapSettings, _append, _sum, trace_loading
+from .snap import (PenaltyContact, SnapPath, SnapSettings, _append, _state, _sum,
+                   trace_loading)
 
 
 PULL_DS_MAX = 0.002     # the pull's largest arc step / R: with the loading's 0.01 the
@@ -107,6 +108,13 @@ def grip(d, delta_max: float, p_c: float, p_atm: float, n: float = 1.0,
                           x0=x0)
     if press.ended_by:
         return Grip(press, (), None, f"the press stopped: {press.ended_by}")
+    fixed = (np.zeros(d.ndof), 1.0)
+    arc = ArcSettings(tol=settings.tol, max_iter=settings.max_iter)
+    law = PenaltyContact(settings.stiffness, settings.onset)
+    try:
+        press = _landed(press, d, delta_max, law, arc)
+    except ConvergenceError as err:
+        return Grip(press, (), None, f"the press found no state at delta_max: {err}")
     x, delta = press.states[-1].x.copy(), press.states[-1].delta
     load = d.cavity
     if pocket == "sealed":
@@ -118,9 +126,6 @@ def grip(d, delta_max: float, p_c: float, p_atm: float, n: float = 1.0,
     at = lambda p: replace(d, cavity=replace(d.cavity, shell=replace(              # noqa: E731
         d.cavity.shell, cavity=Cavity("pressure", p=p, p_atm=p_atm))))
     ramp, f, h = [], 0.0, 1.0 / ramp_steps
-    fixed = (np.zeros(d.ndof), 1.0)
-    arc = ArcSettings(tol=settings.tol, max_iter=settings.max_iter)
-    law = PenaltyContact(settings.stiffness, settings.onset)
     for _ in range(max_steps):
         if f >= 1.0 - 1e-12 or p_c == 0:
             break
@@ -154,3 +159,17 @@ def grip(d, delta_max: float, p_c: float, p_atm: float, n: float = 1.0,
                          unload_to=unload_to, x0=x, delta0=delta)
     ends = pull.ended_by.startswith("pocket opened") or not pull.ended_by
     return Grip(press, tuple(ramp), pull, "" if ends else f"the pull stopped: {pull.ended_by}")
+
+
+def _landed(press: SnapPath, d, delta_max: float, law, arc) -> SnapPath:
+    """The press with one more state exactly at delta_max (Newton at fixed delta from its
+    last state, which the arc step put past it), so that the seal's depth does not depend
+    on the step; the press itself if it ended there."""
+    last = press.states[-1]
+    if last.delta == delta_max:
+        return press
+    cn = _Continuation(Interface(d, law, None), "frictionless", arc)
+    c = constraints(d, "frictionless", [])
+    x, _, K, r, it = cn.correct(c, last.x.copy(), delta_max, (np.zeros(d.ndof), 1.0), 0.0)
+    state = _state(cn, x, delta_max, K, r, cn.tangent_at(K, c), it, 0.0)
+    return replace(press, states=press.states + (state,))

@@ -1,5 +1,5 @@
-"""Benchmark: the sealed gripper in its working order (solver.grip): a thin deep shell
-(h = R) pressed frictionless to --delta-max with its pocket vented, the pocket sealed
+"""Benchmark: the sealed gripper in its working order (solver.grip): a thin shell (h/R
+--h, default 1) pressed frictionless to --delta-max with its pocket vented, the pocket sealed
 there, the shell's own cavity depressurised at fixed delta to -f p_cl (p_cl = 8 C10
 (t/R)^2, a complete sphere's classical buckling pressure), then pulled until the pocket
 opens.  No adhesion.
@@ -8,7 +8,7 @@ Prints one row per fraction f: the cavity's pressure [kPa], P at the ramp's end,
 pull-off P* (most tensile P while sealed) in C10 R^2 and in N for --R-mm and --C10-kPa,
 where the pocket opens (delta / t), its gauge pressure there / p_a, P* over the ideal
 suction force p_a pi r_seal^2, the pull's energy balance, and the wall time.
-Run: python benchmarks/sealed_gripper.py [--t 0.02] [--mesh coarser] [--delta-max 5]
+Run: python benchmarks/sealed_gripper.py [--t 0.02] [--h 1] [--mesh coarser] [--delta-max 5]
 [--fractions 0,0.25,0.5,0.75,1] [--n 1.0] [--p-atm-kPa 101.325] [--C10-kPa 300]
 [--R-mm 20] [--coarser MESH] [--figure PNG]  (--delta-max in thicknesses t; --coarser: each
 row solved on that mesh too, and P*'s error bar from the two (solver.error_bars.error_bar,
@@ -31,6 +31,7 @@ from shell_adhesion.solver.snap import loading_cap, ring_arc
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--t", type=float, default=0.02, help="t/R")
+    ap.add_argument("--h", type=float, default=1.0, help="h/R")
     ap.add_argument("--mesh", default="coarser")
     ap.add_argument("--delta-max", type=float, default=5.0, help="in thicknesses t")
     ap.add_argument("--fractions", default="0,0.25,0.5,0.75,1")
@@ -48,13 +49,13 @@ def main(argv=None):
             raise InputError(f"--fractions: {a.fractions!r} must be numbers >= 0")
         p_atm = pk.p_atm_over_C10(a.p_atm_kPa, a.C10_kPa)
         pk.Pocket("sealed", p_atm, a.n)
-        cap = loading_cap(T, 1.0)
+        cap = loading_cap(T, a.h)
     except ValueError as err:       # InputError is one
         print(err if isinstance(err, InputError) else f"--fractions: {err}", file=sys.stderr)
         return 2
     force_N = a.C10_kPa * 1e-3 * a.R_mm ** 2          # C10 R^2 in N
     p_cl = 8 * T * T
-    print(f"t/R = {T:g}, h/R = 1, {a.mesh} mesh; pressed exactly to {a.delta_max:g} t, sealed "
+    print(f"t/R = {T:g}, h/R = {a.h:g}, {a.mesh} mesh; pressed exactly to {a.delta_max:g} t, sealed "
           f"(n = {a.n:g}, p_a/C10 = {p_atm:.4g}), depressurised, pulled; p_cl = "
           f"{p_cl * a.C10_kPa:.4g} kPa; forces in N for R = {a.R_mm:g} mm, C10 = "
           f"{a.C10_kPa:g} kPa")

@@ -207,3 +207,12 @@ def test_vented_the_suction_lets_the_ring_go_and_adiabatic_gas_holds_as_isotherm
         grip(_d(), DELTA_MAX, -0.5 * P_CL, P_ATM, pocket="open")
     with pytest.raises(InputError, match="^p_c: 0.1 must be a gauge pressure"):
         grip(_d(), DELTA_MAX, 0.1, P_ATM)
+
+
+def test_no_ring_around_a_dimple_nothing_to_seal():
+    # pressed to 2 t the shell has not snapped: its contact is a disc, so the grip ends
+    # after the press and says so, instead of sealing a sliver between contact runs
+    g = grip(_d(), 2 * T, -0.5 * P_CL, P_ATM)
+    assert g.pull is None and g.ramp == ()
+    assert g.ended_by.startswith("no ring around a dimple to seal at delta_max (contact disc")
+    assert g.pull_off() == (0.0, None)

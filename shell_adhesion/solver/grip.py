@@ -90,8 +90,9 @@ def grip(d, delta_max: float, p_c: float, p_atm: float, n: float = 1.0,
          unload_to: float = None, settings: SnapSettings = SnapSettings(),
          ramp_steps: int = 4, max_steps: int = 100, progress=None,
          pocket: str = "sealed") -> Grip:
-    """Press the shell `d` (a forms.Discretisation, no cavity bound) to delta_max / R,
-    seal the pocket (`pocket` "vented": leave it open, the comparison), lower the
+    """Press the shell `d` (a forms.Discretisation, no cavity bound) to delta_max / R
+    (where its contact must be a ring around an apex lifted by SnapSettings.seal_lift t,
+    else the Grip ends there: "no ring around a dimple"), seal the pocket (`pocket` "vented": leave it open, the comparison), lower the
     cavity's gauge pressure to p_c / C10 (<= 0) at fixed delta
     in about `ramp_steps` steps (a step that fails is halved; at most `max_steps` tries),
     and pull to unload_to / R (default -delta_max).  Raises InputError for p_c > 0 or
@@ -116,6 +117,12 @@ def grip(d, delta_max: float, p_c: float, p_atm: float, n: float = 1.0,
     except ConvergenceError as err:
         return Grip(press, (), None, f"the press found no state at delta_max: {err}")
     x, delta = press.states[-1].x.copy(), press.states[-1].delta
+    last, t_over_R = press.states[-1], d.capmesh.cap.t
+    if not (last.ring and last.apex_gap > settings.seal_lift * t_over_R):
+        return Grip(press, (), None,
+                    f"no ring around a dimple to seal at delta_max (contact {last.contact}, "
+                    f"apex {last.apex_gap / t_over_R:.3g} t above the plane; R = 1): press "
+                    "further")
     load = d.cavity
     if pocket == "sealed":
         try:

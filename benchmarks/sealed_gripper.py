@@ -10,7 +10,11 @@ where the pocket opens (delta / t), its gauge pressure there / p_a, P* over the 
 suction force p_a pi r_seal^2, the pull's energy balance, and the wall time.
 Run: python benchmarks/sealed_gripper.py [--t 0.02] [--h 1] [--mesh coarser] [--delta-max 5]
 [--fractions 0,0.25,0.5,0.75,1] [--n 1.0] [--p-atm-kPa 101.325] [--C10-kPa 300]
-[--R-mm 20] [--coarser MESH] [--figure PNG]  (--delta-max in thicknesses t; --coarser: each
+[--R-mm 20] [--coarser MESH] [--gamma-hat G --tabor 0.3] [--figure PNG]  (--delta-max in
+thicknesses t; --gamma-hat: adhesion gamma/(C10 R) by the smoothed Dugdale law of that Tabor
+parameter, switched on where the pull starts, and the open shell's pull-off (pocket vented,
+no suction, the same law) first, each row's gain over it; "<=" marks a pull-off found up to a
+fold the pull could not jump from (solver.grip.Grip.bound); --coarser: each
 row solved on that mesh too, and P*'s error bar from the two (solver.error_bars.error_bar,
 the order of solver.error_bars.assumed_order); --figure: P against delta along each pull,
 and P* against the suction).  Bad input: one line, exit 2.
@@ -20,12 +24,15 @@ import sys
 import time
 
 from shell_adhesion.errors import InputError
+from shell_adhesion.solver import maugis_dugdale as md
 from shell_adhesion.solver import pocket as pk
+from shell_adhesion.solver.cohesive import CohesiveLaw
 from shell_adhesion.solver.error_bars import assumed_order, error_bar
 from shell_adhesion.solver.forms import discretise
 from shell_adhesion.solver.grip import grip
 from shell_adhesion.solver.mesh import cap_mesh, mesh_spec
 from shell_adhesion.solver.snap import loading_cap, ring_arc
+from shell_adhesion.study.cohesive_case import K_OVER_C10
 
 
 def main(argv=None):
@@ -40,6 +47,8 @@ def main(argv=None):
     ap.add_argument("--C10-kPa", type=float, default=300.0)
     ap.add_argument("--R-mm", type=float, default=20.0)
     ap.add_argument("--coarser", default=None, help="the error bar's coarser mesh")
+    ap.add_argument("--gamma-hat", type=float, default=0.0, help="gamma / (C10 R)")
+    ap.add_argument("--tabor", type=float, default=0.3)
     ap.add_argument("--figure", default=None)
     a = ap.parse_args(argv)
     T = a.t
@@ -50,6 +59,8 @@ def main(argv=None):
         p_atm = pk.p_atm_over_C10(a.p_atm_kPa, a.C10_kPa)
         pk.Pocket("sealed", p_atm, a.n)
         cap = loading_cap(T, a.h)
+        law = (CohesiveLaw(md.sigma0_of(a.tabor, a.gamma_hat, 1.0, K_OVER_C10), a.gamma_hat)
+               if a.gamma_hat > 0 else None)
     except ValueError as err:       # InputError is one
         print(err if isinstance(err, InputError) else f"--fractions: {err}", file=sys.stderr)
         return 2
@@ -67,9 +78,23 @@ def main(argv=None):
              if a.coarser else ""))
     print("| --- " * (13 if a.coarser else 10) + "|")
 
-    def solved(mesh, f):
+    def solved(mesh, f, pocket="sealed"):
         d = discretise(cap_mesh(cap, mesh_spec(mesh, ring_arc(a.delta_max * T))))
-        return grip(d, a.delta_max * T, -f * p_cl, p_atm, a.n)
+        return grip(d, a.delta_max * T, -f * p_cl, p_atm, a.n, pocket=pocket, adhesion=law)
+
+    def answered(g):
+        return g.pull is not None and (not g.ended_by or g.bound)
+
+    open_P = None
+    if law is not None:
+        t0 = time.perf_counter()
+        g = solved(a.mesh, 0.0, "vented")
+        open_P = g.pull_off()[0] if answered(g) else None
+        print(f"adhesion gamma/(C10 R) {a.gamma_hat:g}, Tabor {a.tabor:g}: the open shell "
+              f"(pocket vented, no suction) P* "
+              + (f"{'<= ' if g.bound else ''}{open_P:+.4e} C10 R^2 ({open_P * force_N:+.4g} N)"
+                 if open_P is not None else f"not answered: {g.ended_by}")
+              + f"; {time.perf_counter() - t0:.1f} s")
 
     grips = []
     for f in fractions:
@@ -78,7 +103,7 @@ def main(argv=None):
         wall = time.perf_counter() - t0
         grips.append((f, g))
         ramp = f"{g.ramp[-1].P:+.4e}" if g.ramp else "-"
-        if g.ended_by:
+        if not answered(g):
             print(f"| {f:g} | {-f * p_cl * a.C10_kPa + 0.0:.4g} | {ramp} | {g.ended_by} | | | | | | "
                   f"{wall:.1f} |")
             continue
@@ -87,10 +112,12 @@ def main(argv=None):
         extra = ""
         if a.coarser:
             gc = solved(a.coarser, f)
-            Pc = gc.pull_off()[0] if not gc.ended_by else float("nan")
+            Pc = gc.pull_off()[0] if answered(gc) else float("nan")
             bar = float(error_bar(P, Pc, order=order))
             extra = f" {Pc:+.4e} | {bar:.2e} | {bar * force_N:.2g} |"
-        print(f"| {f:g} | {-f * p_cl * a.C10_kPa + 0.0:.4g} | {ramp} | {P:+.4e} | "
+        gain = f" (gain {P / open_P:.3g})" if open_P else ""
+        print(f"| {f:g} | {-f * p_cl * a.C10_kPa + 0.0:.4g} | {ramp} | "
+              f"{'<= ' if g.bound else ''}{P:+.4e}{gain} | "
               f"{P * force_N:+.4g} | {last.delta / T:.3f} | {last.p / p_atm:+.5f} | "
               f"{-P / g.ideal_suction(p_atm):.4f} | {g.pull.energy_miss():.1e} | {wall:.1f} |"
               + extra)

@@ -6,10 +6,12 @@ delta_max with the cavity at ambient pressure and the pocket under its dimple ve
 there the pocket's gas is sealed (ambient pressure, p_abs V^n constant: solver.pocket),
 the cavity's gauge pressure is lowered at fixed delta to p_c (< 0: the suction draws the
 dimple up against the sealed gas, whose pressure falls), and the rim is raised by the
-same continuation until the pocket opens or unload_to.  No adhesion.
+same continuation until the pocket opens or unload_to.  Without adhesion, or with a
+finite-range law (solver.cohesive) switched on at fixed delta where the pull starts.
 
 Dimensionless as the solver: lengths / R, forces / (C10 R^2), pressures / C10.  P > 0
-compresses; the pull-off is the most tensile P while the pocket is sealed (0 if none).
+compresses; the pull-off is the most tensile P along the pull (0 if none; a bound where
+the pull stops at a fold it cannot jump from: `Grip.bound`).
 """
 from dataclasses import dataclass, replace
 import math
@@ -65,6 +67,14 @@ class Grip:
         k = int(np.argmin([s.P for s in states]))
         return min(states[k].P, 0.0), (states[k] if states[k].P < 0 else None)
 
+    @property
+    def bound(self) -> bool:
+        """The pull stopped at a fold of delta it could not jump from (with adhesion: the
+        jump's damped descent does not take the sealed gas's unknown), so P* is the least
+        P up to there: the pull-off is at least that tensile."""
+        return self.pull is not None and self.ended_by.startswith(
+            "the pull stopped: the unloading passed a fold")
+
     def path(self) -> SnapPath:
         """The press and the pull as one SnapPath (turn: the pull's turn): the ramp is a
         step at fixed delta, the energy it adds (U + Pi + E_gas after minus before, the
@@ -89,7 +99,7 @@ class Grip:
 def grip(d, delta_max: float, p_c: float, p_atm: float, n: float = 1.0,
          unload_to: float = None, settings: SnapSettings = SnapSettings(),
          ramp_steps: int = 4, max_steps: int = 100, progress=None,
-         pocket: str = "sealed") -> Grip:
+         pocket: str = "sealed", adhesion=None) -> Grip:
     """Press the shell `d` (a forms.Discretisation, no cavity bound) to delta_max / R
     (where its contact must be a ring around an apex lifted by SnapSettings.seal_lift t,
     else the Grip ends there: "no ring around a dimple"), seal the pocket (`pocket` "vented": leave it open, the comparison), lower the
@@ -97,7 +107,9 @@ def grip(d, delta_max: float, p_c: float, p_atm: float, n: float = 1.0,
     in about `ramp_steps` steps (a step that fails is halved; at most `max_steps` tries),
     and pull to unload_to / R (default -delta_max).  Raises InputError for p_c > 0 or
     p_c + p_atm < 0; a stage that fails ends the Grip early with `ended_by` saying where.
-    `progress(state)` after each state of the press and of the pull."""
+    `progress(state)` after each state of the press and of the pull.  `adhesion` (a
+    cohesive.CohesiveLaw): switched on at fixed delta where the pull starts (after the
+    ramp), the pull then by the law (snap.trace_loading's adhesion)."""
     if not (math.isfinite(p_c) and -p_atm <= p_c <= 0):
         raise InputError(f"p_c: {p_c!r} must be a gauge pressure in [-p_atm, 0] "
                          f"(p_atm = {p_atm:g} C10)")
@@ -163,7 +175,7 @@ def grip(d, delta_max: float, p_c: float, p_atm: float, n: float = 1.0,
     pull = trace_loading(at(p_c), delta, replace(settings, seal_at_turn=False,
                                                  ds_max=min(settings.ds_max, PULL_DS_MAX)),
                          progress,
-                         unload_to=unload_to, x0=x, delta0=delta)
+                         unload_to=unload_to, x0=x, delta0=delta, adhesion=adhesion)
     ends = pull.ended_by.startswith("pocket opened") or not pull.ended_by
     return Grip(press, tuple(ramp), pull, "" if ends else f"the pull stopped: {pull.ended_by}")
 

@@ -414,6 +414,17 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
         turn = 0
         t = (-t[0], -t[1])
     ended_by = f"state limit: {s.max_states} states"
+    if adhesion is not None and turn == 0:      # switched on where the unloading starts
+        try:
+            cn, x, K, r, c, t, n = _adhere(cn.d, adhesion, c, x, delta, arc)
+        except ConvergenceError as err:
+            return SnapPath(tuple(states), f"the adhesion did not switch on at delta = "
+                            f"{delta:.6g} R ({err})", _sum(timers), turn)
+        timers.append(cn.timer)
+        _append(states, _state(cn, x, delta, K, r, t, n, 0.0), at_same_delta=True)
+        turn = 1
+        dz_max = min(dz_max, arc.dx_max * adhesion.delta_c, arc.dx_travel * delta_max)
+        ds = min(ds, dz_max)
     clock = time.perf_counter()
     while len(states) < s.max_states:
         ds = min(ds, s.ds_max, dz_max / (np.abs(t[0][outer_z]).max() + abs(t[1])))

@@ -113,8 +113,11 @@ def main(argv=None):
         if a.coarser:
             gc = solved(a.coarser, f)
             Pc = gc.pull_off()[0] if answered(gc) else float("nan")
-            bar = float(error_bar(P, Pc, order=order))
-            extra = f" {Pc:+.4e} | {bar:.2e} | {bar * force_N:.2g} |"
+            if g.bound or gc.bound:     # a bar from bounds says nothing
+                extra = (f" {'<= ' if gc.bound else ''}{Pc:+.4e} | - (a bound) | - |")
+            else:
+                bar = float(error_bar(P, Pc, order=order))
+                extra = f" {Pc:+.4e} | {bar:.2e} | {bar * force_N:.2g} |"
         gain = f" (gain {P / open_P:.3g})" if open_P else ""
         print(f"| {f:g} | {-f * p_cl * a.C10_kPa + 0.0:.4g} | {ramp} | "
               f"{'<= ' if g.bound else ''}{P:+.4e}{gain} | "

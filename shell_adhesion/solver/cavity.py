@@ -408,4 +408,4 @@ def first_touch(d, settings: Settings = Settings()):
         raise InputError(f"cavity: the pressurised shell's lowest point is off the axis (its "
                          f"apex dimples by {z[0] - z.min():.3g} R at p/C10 = "
                          f"{d.cavity.pressure(pr.x):.4g}); ring contact is not supported")
-    return lifted(d, -pr.apex_uz), pr.x, pr
+    return (d if pr.apex_uz == 0.0 else lifted(d, -pr.apex_uz)), pr.x, pr

@@ -24,7 +24,7 @@ from .arclength import ArcSettings, _Continuation
 from .cavity import Cavity
 from .cohesive import Interface
 from .contact import constraints, rim_load
-from .pocket import Pocket, bind_depressurised, seal
+from .pocket import MODES, Pocket, bind_depressurised, seal
 from .snap import (PenaltyContact, SnapPath, SnapSettings, _append, _state, _sum,
                    trace_loading)
 
@@ -113,7 +113,7 @@ def grip(d, delta_max: float, p_c: float, p_atm: float, n: float = 1.0,
     if not (math.isfinite(p_c) and -p_atm <= p_c <= 0):
         raise InputError(f"p_c: {p_c!r} must be a gauge pressure in [-p_atm, 0] "
                          f"(p_atm = {p_atm:g} C10)")
-    if pocket not in ("sealed", "vented"):
+    if pocket not in MODES:
         raise InputError(f"pocket: {pocket!r} must be one of sealed, vented")
     unload_to = -delta_max if unload_to is None else unload_to
     d, x0, _ = bind_depressurised(d, Pocket("vented"), Cavity("pressure", p=0.0, p_atm=p_atm))
@@ -142,8 +142,10 @@ def grip(d, delta_max: float, p_c: float, p_atm: float, n: float = 1.0,
         except ValueError as err:
             return Grip(press, (), None, f"nothing to seal at delta_max: {err}")
 
-    at = lambda p: replace(d, cavity=replace(d.cavity, shell=replace(              # noqa: E731
-        d.cavity.shell, cavity=Cavity("pressure", p=p, p_atm=p_atm))))
+    def at(p):          # d with its cavity's gauge pressure p / C10
+        return replace(d, cavity=replace(d.cavity, shell=replace(
+            d.cavity.shell, cavity=Cavity("pressure", p=p, p_atm=p_atm))))
+
     ramp, f, h = [], 0.0, 1.0 / ramp_steps
     for _ in range(max_steps):
         if f >= 1.0 - 1e-12 or p_c == 0:
@@ -159,7 +161,7 @@ def grip(d, delta_max: float, p_c: float, p_atm: float, n: float = 1.0,
             if h < 1e-3:
                 break
             continue
-        if dp.cavity.is_open(z):
+        if pocket == "sealed" and dp.cavity.is_open(z):
             return Grip(press, tuple(ramp), None,
                         f"the pocket opened at p_c = {(f + h) * p_c:.4g} C10 on the ramp")
         f, x = f + h, z

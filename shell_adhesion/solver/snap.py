@@ -416,15 +416,14 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
     ended_by = f"state limit: {s.max_states} states"
     if adhesion is not None and turn == 0:      # switched on where the unloading starts
         try:
-            cn, x, K, r, c, t, n = _adhere(cn.d, adhesion, c, x, delta, arc)
+            cn, x, K, r, c, t, dz_max = _adhesion_on(cn, adhesion, c, x, delta, arc, states,
+                                                     timers, dz_max, delta_max)
         except ConvergenceError as err:
-            return SnapPath(tuple(states), f"the adhesion did not switch on at delta = "
-                            f"{delta:.6g} R ({err})", _sum(timers), turn)
-        timers.append(cn.timer)
-        _append(states, _state(cn, x, delta, K, r, t, n, 0.0), at_same_delta=True)
+            return SnapPath(tuple(states), _no_switch(delta, err), _sum(timers), turn)
         turn = 1
-        dz_max = min(dz_max, arc.dx_max * adhesion.delta_c, arc.dx_travel * delta_max)
         ds = min(ds, dz_max)
+        if progress is not None:
+            progress(states[-1])
     clock = time.perf_counter()
     while len(states) < s.max_states:
         ds = min(ds, s.ds_max, dz_max / (np.abs(t[0][outer_z]).max() + abs(t[1])))
@@ -571,14 +570,12 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
             states[-1] = _state(cn, x, delta, K, r, t, it, states[-1].seconds, slope)
         if adhesion is not None and turn == len(states) - 1:
             try:
-                cn, x, K, r, c, t, n = _adhere(cn.d, adhesion, c, x, delta, arc)
+                cn, x, K, r, c, t, dz_max = _adhesion_on(cn, adhesion, c, x, delta, arc,
+                                                         states, timers, dz_max, delta_max)
             except ConvergenceError as err:
-                ended_by = f"the adhesion did not switch on at delta = {delta:.6g} R ({err})"
+                ended_by = _no_switch(delta, err)
                 break
-            timers.append(cn.timer)
-            _append(states, _state(cn, x, delta, K, r, t, n, 0.0), at_same_delta=True)
             turn = len(states) - 1
-            dz_max = min(dz_max, arc.dx_max * adhesion.delta_c, arc.dx_travel * delta_max)
             ds = min(ds, dz_max)
             if progress is not None:
                 progress(states[-1])
@@ -657,6 +654,21 @@ def _adhere(d, law, c, x, delta, arc):
                                   "frictionless")
     t = new.tangent_at(K, c, (np.zeros(d.ndof), -1.0))
     return new, x, K, r, c, t, n
+
+
+def _adhesion_on(cn, law, c, x, delta, arc, states, timers, dz_max, delta_max):
+    """`_adhere` at the state x (delta / R) of the path, the switched state appended at the
+    same delta (its energy the state before's anchor_jump) and its timer kept: (cn, x, K,
+    r, c, t, dz_max), the step bound now also the law's (ArcSettings.dx_max delta_c,
+    dx_travel delta_max)."""
+    cn, x, K, r, c, t, n = _adhere(cn.d, law, c, x, delta, arc)
+    timers.append(cn.timer)
+    _append(states, _state(cn, x, delta, K, r, t, n, 0.0), at_same_delta=True)
+    return cn, x, K, r, c, t, min(dz_max, arc.dx_max * law.delta_c, arc.dx_travel * delta_max)
+
+
+def _no_switch(delta, err) -> str:
+    return f"the adhesion did not switch on at delta = {delta:.6g} R ({err})"
 
 
 def adhesive_pull_off(path: SnapPath) -> tuple:

@@ -40,6 +40,7 @@ from .cohesive import Interface, anchors_at, scaled
 from .contact import INTERFACES, Constraints, constraints, gaps, rim_load
 from .forms import Linearisation, strain_energy, tangent
 from .linear import Timer
+from .pocket import PocketOpened
 from .path import REFINE_MAX, REFINE_TOL, Settings, _Problem, _chord_pays
 
 
@@ -456,8 +457,12 @@ def _descend(cn, c, x, max_iter=600, mu0=1e-2):
     falls as the flow settles) and raised tenfold where a step fails; returns (x,
     iterations) once a plain Newton corrector (`correct`) converges from a step taken
     with mu <= 1e-6 (or from every tenth step).  Passes a snap (a jump-in at fixed delta) that the corrector alone
-    cannot, to the equilibrium the damped flow settles in.  ConvergenceError after
-    max_iter steps."""
+    cannot, to the equilibrium the damped flow settles in.  A sealed gas (the pocket's:
+    `on_gas_law` of d.cavity) stays on its law, its unknown set from the volume after
+    each step; a step that loses the pocket's ring, or raises the residual more than
+    DESCENT_GROWTH times, is retried with more damping, and PocketOpened is raised where
+    even a step damped by MU_OPENS loses the ring.
+    ConvergenceError after max_iter steps."""
     d = cn.d
     fixed = (np.zeros(d.ndof), 1.0)
     delta = -x[c.rimz].mean()
@@ -465,13 +470,15 @@ def _descend(cn, c, x, max_iter=600, mu0=1e-2):
     u = c.free[c.free < 2 * d.n2]                       # the free displacement dofs
     lo, hi = K.indptr[u], K.indptr[u + 1]
     slot = np.array([a + np.searchsorted(K.indices[a:b], i) for i, a, b in zip(u, lo, hi)])
+    on_gas_law = getattr(d.cavity, "on_gas_law", lambda y: y)
+    growth = DESCENT_GROWTH if hasattr(d.cavity, "on_gas_law") and d.cavity.sealed else math.inf
     mu, res_before = mu0, None
     for it in range(max_iter):
         if it:
             K, r = cn.linearise(x)
         res = float(np.linalg.norm(r[c.free]))
         if res_before is not None:
-            mu = float(np.clip(mu * res / res_before, 1e-9, 1e6))
+            mu = float(np.clip(mu * res / res_before, 1e-9, MU_OPENS))
         res_before = res
         D = np.abs(K.data[slot]).mean()
         for _ in range(20):
@@ -480,14 +487,20 @@ def _descend(cn, c, x, max_iter=600, mu0=1e-2):
             try:
                 lu, _ = cn.factor(Km, c)
                 dx = cn.solve(lu, -r[c.free])
+                y = x.copy()
+                y[c.free] += dx
+                y = on_gas_law(y)
+            except PocketOpened:
+                if mu >= MU_OPENS:      # however short the step, the flow opens the pocket
+                    raise
+                mu *= 10.0
+                continue
             except ConvergenceError:
                 mu *= 10.0
                 continue
-            y = x.copy()
-            y[c.free] += dx
             with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-                ok = np.all(np.isfinite(cn.residual(y)[1]))
-            if ok:
+                ry = cn.residual(y)[1][c.free]
+            if np.all(np.isfinite(ry)) and np.linalg.norm(ry) <= growth * res:
                 break
             mu *= 10.0
         else:
@@ -500,6 +513,15 @@ def _descend(cn, c, x, max_iter=600, mu0=1e-2):
             except ConvergenceError:
                 pass
     raise ConvergenceError(f"descent: no equilibrium after {max_iter} steps")
+
+
+DESCENT_GROWTH = 10.0   # `_descend` with a sealed pocket: a step that raises the residual
+#                         more than this many times is retried with more damping (t/R 0.02,
+#                         coarser mesh: without it the flow cycled through four states for
+#                         ever; the loading's jumps without a pocket need such steps: the
+#                         sharp contact's flow found no equilibrium with the rule)
+MU_OPENS = 1e6      # `_descend`: the damping above which mu does not fall by itself, and at
+#                     which a step that still opens a sealed pocket means the flow opens it
 
 
 class Stall:

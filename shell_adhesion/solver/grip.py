@@ -69,9 +69,10 @@ class Grip:
 
     @property
     def bound(self) -> bool:
-        """The pull stopped at a fold of delta it could not jump from (with adhesion: the
-        jump's damped descent does not take the sealed gas's unknown), so P* is the least
-        P up to there: the pull-off is at least that tensile."""
+        """The pull stopped at a fold of delta it could not jump from (the jump's damped
+        descent found no equilibrium and did not open the pocket), so P* is the least P
+        up to there: the pull-off is at least that tensile.  (With adhesion the measured
+        folds all open the pocket in the jump: the pull ends there, P* exact.)"""
         return self.pull is not None and self.ended_by.startswith(
             "the pull stopped: the unloading passed a fold")
 

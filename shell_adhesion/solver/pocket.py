@@ -38,7 +38,7 @@ import math
 
 import numpy as np
 
-from shell_adhesion.errors import InputError
+from shell_adhesion.errors import ConvergenceError, InputError
 
 from .cavity import (P_ATM_KPA, Cavity, _border, _GAUSS_W, _GAUSS_X, edge_slots,
                      first_touch, gas_energy, gas_volume, pressure_tangent)
@@ -216,6 +216,20 @@ class PocketLoad:
             return E
         return E + gas_energy(self.volume(x), self.V0, 0.0, self.pocket.p_atm, self.pocket.n)
 
+    def on_gas_law(self, x):
+        """x with the gas unknown set to the pressure the sealed gas has at the pocket's
+        volume in x, p = p_a ((V0 / V)^n - 1) (x itself unless sealed): a damped descent
+        (arclength._descend) moves the shell and keeps the gas on its law.  Raises
+        PocketOpened where no ring around a gap is left in x."""
+        if not self.sealed:
+            return x
+        V = self.volume(x)
+        if not V > 0:
+            raise PocketOpened("the sealed pocket opened")
+        y = x.copy()
+        y[self.n_fe] = self.pocket.p_atm * ((self.V0 / V) ** self.pocket.n - 1.0)
+        return y
+
     # ------------------------------------------------- residual and tangent
     def add_residual(self, x, r):
         return self.add_tangent(None, r, x)[1]
@@ -247,6 +261,10 @@ class PocketLoad:
             return None, r
         return pressure_tangent(K, r, self.dofs[edges], self.slots[edges], g, H, p,
                                 self.border, (Vg - V, dVg), self.n_fe)
+
+
+class PocketOpened(ConvergenceError):
+    """A state reached (by a step or a descent) has lost the ring around the sealed pocket."""
 
 
 def _roots(a, b, c):

@@ -82,7 +82,7 @@ from .forms import Discretisation, discretise, strain_energy
 from .geometry import T_MIN, Cap, check_cap, check_delta_max
 from .mesh import cap_mesh, mesh_spec
 from .linear import Timer
-from .pocket import PocketLoad, seal
+from .pocket import PocketLoad, PocketOpened, seal
 
 
 @dataclass(frozen=True)
@@ -375,7 +375,9 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
     or at unload_to.  Where the unloading passes a fold of delta (delta would rise again)
     it jumps as under displacement control (`_jump` with the rim pushed back by
     jump_push t, onward), the jump landing `landed` and its dissipation recorded as
-    above; a jump that leaves the law's reach ends the path ("")."""
+    above; a jump that leaves the law's reach ends the path (""), one that loses the ring
+    around a sealed pocket ends it "pocket opened: in the jump ..." (the descent keeps
+    the gas on its law: `arclength._descend`)."""
     if adhesion is not None and (unload_to is None or interface != "frictionless"):
         raise ValueError("adhesion: a cohesive law needs an unloading (unload_to) and the "
                          "frictionless interface")
@@ -430,7 +432,7 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
         try:
             xn, dn, Kn, rn, it = _correct(cn, c, x, delta, t, ds)
             if cn.d.cavity is not None and cn.d.cavity.sealed and _opens(cn, xn):
-                raise _PocketOpens("the pocket opens")
+                raise PocketOpened("the pocket opens")
             L = math.sqrt(cn.dot(xn - x, dn - delta, xn - x, dn - delta))
             chord = ((xn - x) / L, (dn - delta) / L)
             tn = cn.tangent_at(Kn, c, chord)
@@ -458,9 +460,17 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
                 x, delta, K, r, it, landed = _jump(cn, c, x, delta,
                                                    -s.jump_push * d.capmesh.cap.t,
                                                    s.jump_descent, onward=True)
+            except PocketOpened:
+                ended_by = (f"pocket opened: in the jump from the fold of delta at "
+                            f"{delta:.6g} R, the contact ring around it is lost")
+                break
             except ConvergenceError as why:
                 ended_by = (f"the unloading passed a fold of delta at {delta:.6g} R; no "
                             f"jump from there: {why}")
+                break
+            if cn.d.cavity is not None and cn.d.cavity.sealed and _opens(cn, x):
+                ended_by = (f"pocket opened: in the jump from the fold of delta at "
+                            f"{states[-1].delta:.6g} R, the contact ring around it is lost")
                 break
             if gaps(d, x, cn.candidates).min() > adhesion.reach:
                 ended_by = ""       # the jump leaves the law's reach: detached
@@ -484,7 +494,7 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
                 ds = s.ds_min / 4
                 err = _TurnedBack(f"{err} from delta = {delta:.6g} R")
             if (cn.d.cavity is not None and cn.d.cavity.sealed and ds < s.open_ds
-                    and (isinstance(err, _PocketOpens) or not _sealed_ahead(cn, x, t, ds))):
+                    and (isinstance(err, PocketOpened) or not _sealed_ahead(cn, x, t, ds))):
                 ended_by = (f"pocket opened: the contact ring around it is lost between "
                             f"delta = {delta:.6g} R and {delta + 2 * ds * t[1]:.6g} R")
                 break
@@ -684,10 +694,6 @@ def adhesive_pull_off(path: SnapPath) -> tuple:
 def _check_interface(interface):
     if interface not in INTERFACES:
         raise InputError(f"interface: {interface!r} must be one of {', '.join(INTERFACES)}")
-
-
-class _PocketOpens(ConvergenceError):
-    """A step's state has lost the ring around the sealed pocket."""
 
 
 class _FoldPassed(Exception):

@@ -25,8 +25,8 @@ from shell_adhesion.solver.forms import discretise, potential_energy, residual, 
 from shell_adhesion.solver.grip import grip
 from shell_adhesion.solver.mesh import cap_mesh, mesh_spec
 from shell_adhesion.study.cohesive_case import K_OVER_C10
-from shell_adhesion.solver.snap import (LIFT_SHARE, SnapSettings, loading_cap, ring_arc,
-                                        trace_loading)
+from shell_adhesion.solver.snap import (LIFT_SHARE, SnapSettings, adhesive_pull_off,
+                                        loading_cap, ring_arc, trace_loading)
 
 T, DELTA_MAX = 0.02, 0.1
 P_ATM = pk.p_atm_over_C10(101.325, 300.0)
@@ -287,12 +287,21 @@ def test_the_descent_keeps_the_sealed_gas_on_its_law():
 @pytest.mark.slow
 def test_the_open_shell_and_the_sealed_pull_at_2e_5():
     # the open shell (vented, no suction) with the same law: the dimple closes and the
-    # disc pulls off (docs/thin-shells.md, "Unloaded below gamma_c": -5.39e-5 at
-    # -0.355 t from snap_adhesion's route); sealed without suction at 2e-5 the pocket
-    # opens in the jump from a fold at 3.72 t: -5.628e-4, 10.5 times the open shell
-    for gamma, P_open in ((1e-5, -3.2517e-5), (2e-5, -5.3809e-5)):
+    # disc pulls off.  The grip's open shell (a cavity bound at zero gauge, the pocket
+    # vented, the pull in arc steps <= 0.002 R) is today's adhesive unloading of the plain
+    # shell (snap.trace_loading with the law switched on at the turn, steps <= 0.01 R;
+    # docs/thin-shells.md, "Unloaded below gamma_c"): the two agree within a fifth of the
+    # open shell's mesh bar (1.4 % at 1.05e-5, benchmarks/gripper_gain.py).  Sealed
+    # without suction at 2e-5 the pocket opens in the jump from a fold at 3.72 t:
+    # -5.628e-4, 10.5 times the open shell, within the ideal suction force
+    for gamma in (1e-5, 2e-5):
         g = grip(_d("coarse"), DELTA_MAX, 0.0, P_ATM, pocket="vented", adhesion=_law(gamma))
-        assert g.ended_by == "" and g.pull_off()[0] == pytest.approx(P_open, rel=1e-3)
+        plain = trace_loading(_d("coarse"), DELTA_MAX, SnapSettings(), unload_to=-DELTA_MAX,
+                              adhesion=_law(gamma))
+        assert g.ended_by == "" and plain.ended_by == ""
+        assert g.pull_off()[0] == pytest.approx(adhesive_pull_off(plain)[0], rel=0.003)
+    P_open = g.pull_off()[0]
     g = grip(_d("coarse"), DELTA_MAX, 0.0, P_ATM, adhesion=_law(2e-5))
     assert g.ended_by == "" and g.pull.ended_by.startswith("pocket opened: in the jump")
     assert g.pull_off()[0] == pytest.approx(-5.628e-4, abs=0.005e-4)
+    assert 10 < g.pull_off()[0] / P_open and -g.pull_off()[0] <= g.ideal_suction(P_ATM)

@@ -40,8 +40,8 @@ from .cohesive import Interface, anchors_at, scaled
 from .contact import INTERFACES, Constraints, constraints, gaps, rim_load
 from .forms import Linearisation, strain_energy, tangent
 from .linear import Timer
-from .pocket import PocketOpened
 from .path import REFINE_MAX, REFINE_TOL, Settings, _Problem, _chord_pays
+from .pocket import PocketOpened
 
 
 @dataclass(frozen=True)
@@ -461,8 +461,8 @@ def _descend(cn, c, x, max_iter=600, mu0=1e-2):
     `on_gas_law` of d.cavity) stays on its law, its unknown set from the volume after
     each step; a step that loses the pocket's ring, or raises the residual more than
     DESCENT_GROWTH times, is retried with more damping, and PocketOpened is raised where
-    even a step damped by MU_OPENS loses the ring.
-    ConvergenceError after max_iter steps."""
+    even a step damped by MU_OPENS loses the ring.  ConvergenceError after max_iter
+    steps."""
     d = cn.d
     fixed = (np.zeros(d.ndof), 1.0)
     delta = -x[c.rimz].mean()

@@ -78,7 +78,7 @@ from .arclength import (SWITCH_OFF, ArcSettings, _Continuation, _descend, _switc
                         work as arc_work)
 from .cohesive import CohesiveLaw, Interface, penalty, point_anchors_at, scaled
 from .contact import INTERFACES, constraints, gaps, rim_load
-from .forms import Discretisation, discretise, strain_energy
+from .forms import Discretisation, discretise, potential_energy, strain_energy
 from .geometry import T_MIN, Cap, check_cap, check_delta_max
 from .mesh import cap_mesh, mesh_spec
 from .linear import Timer
@@ -631,7 +631,8 @@ def _jump(cn, c, x, delta, push, steps, onward=False):
     descent (`arclength._descend`, at most `steps` steps), and the state it settles in
     brought back to delta on its own branch (Newton at fixed delta).  Returns (x, delta,
     K, r, iterations, landed): landed True, at delta.  Where the shell settles back on
-    the branch it was on (its energy at delta not below the start's by JUMP_GAIN), that
+    the branch it was on (its energy at delta, U + Pi + the gas's and the cavity load's
+    (`forms.potential_energy`), not below the start's by JUMP_GAIN), that
     branch goes on past delta: with `onward`, the settled state at delta + push is
     returned (landed False), else ConvergenceError; ConvergenceError also if it does not
     settle or finds no state at delta."""
@@ -651,7 +652,7 @@ def _jump(cn, c, x, delta, push, steps, onward=False):
             z[c.rimz] = -(delta + f * push)
             z, _, K, r, (more, chords) = cn.correct(c, z, delta + f * push, fixed, 0.0)
             full, chord = full + more, chord + chords
-    energy = lambda v: strain_energy(cn.d, v) + cn.iface.energy(v)      # noqa: E731
+    energy = lambda v: potential_energy(cn.d, v) + cn.iface.energy(v)   # noqa: E731
     if energy(z) < energy(x) - JUMP_GAIN * abs(energy(x)):
         return z, delta, K, r, n + full + chord, True
     if not onward:

@@ -117,10 +117,11 @@ def main(argv=None):
             exact = not g.bound and gc.pull is not None and not gc.ended_by
             bar = (float(error_bar(P, gc.pull_off()[0], order=assumed_order(T, mesh)))
                    if exact else None)
-            ends = ("bound: " if g.bound else "") + g.pull.ended_by.split(":")[0]
+            ends = ("bound: " if g.bound else "") + (g.pull.ended_by.split(":")[0]
+                                                     or "detached")
             if bar is None and not g.bound:
                 ends += f"; no bar: on {coarser} {gc.ended_by[:60] or 'no pull'}"
-            return P, bar, ends or "detached", wall
+            return P, bar, ends, wall
 
         P0, b0, ends0, wall0 = answer(0.0, "vented", a.mesh, a.coarser)
         if P0 is not None and b0 is None:       # its coarser pull stopped short

@@ -471,7 +471,7 @@ def _descend(cn, c, x, max_iter=600, mu0=1e-2):
     lo, hi = K.indptr[u], K.indptr[u + 1]
     slot = np.array([a + np.searchsorted(K.indices[a:b], i) for i, a, b in zip(u, lo, hi)])
     on_gas_law = getattr(d.cavity, "on_gas_law", lambda y: y)
-    growth = DESCENT_GROWTH if hasattr(d.cavity, "on_gas_law") and d.cavity.sealed else math.inf
+    guarded = hasattr(d.cavity, "on_gas_law") and d.cavity.sealed     # DESCENT_GROWTH
     mu, res_before = mu0, None
     for it in range(max_iter):
         if it:
@@ -500,7 +500,8 @@ def _descend(cn, c, x, max_iter=600, mu0=1e-2):
                 continue
             with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
                 ry = cn.residual(y)[1][c.free]
-            if np.all(np.isfinite(ry)) and np.linalg.norm(ry) <= growth * res:
+            if np.all(np.isfinite(ry)) and not (
+                    guarded and not np.linalg.norm(ry) <= DESCENT_GROWTH * res):
                 break
             mu *= 10.0
         else:

@@ -103,8 +103,9 @@ def grip(d, delta_max: float, p_c: float, p_atm: float, n: float = 1.0,
          pocket: str = "sealed", adhesion=None) -> Grip:
     """Press the shell `d` (a forms.Discretisation, no cavity bound) to delta_max / R
     (where its contact must be a ring around an apex lifted by SnapSettings.seal_lift t,
-    else the Grip ends there: "no ring around a dimple"), seal the pocket (`pocket` "vented": leave it open, the comparison), lower the
-    cavity's gauge pressure to p_c / C10 (<= 0) at fixed delta
+    else the Grip ends there: "no ring around a dimple"), seal the pocket (`pocket`
+    "vented": leave it open, the comparison), lower the cavity's gauge pressure to p_c /
+    C10 (<= 0) at fixed delta
     in about `ramp_steps` steps (a step that fails is halved; at most `max_steps` tries),
     and pull to unload_to / R (default -delta_max).  Raises InputError for p_c > 0 or
     p_c + p_atm < 0; a stage that fails ends the Grip early with `ended_by` saying where.

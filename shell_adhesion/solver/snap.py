@@ -512,21 +512,20 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
         if jump_from:
             # the adhesive unloading jumps under displacement control from the state
             # before (the rim pushed back by jump_push t, `_jump`, onward)
+            before = delta
             try:
                 x, delta, K, r, it, landed = _jump(cn, c, x, delta,
                                                    -s.jump_push * d.capmesh.cap.t,
                                                    s.jump_descent, onward=True)
+                if cn.d.cavity is not None and cn.d.cavity.sealed and _opens(cn, x):
+                    raise PocketOpened("landed with no ring around the pocket")
             except PocketOpened:
-                ended_by = (f"pocket opened: in the jump from delta = {delta:.6g} R "
+                ended_by = (f"pocket opened: in the jump from delta = {before:.6g} R "
                             f"({jump_from}), the contact ring around it is lost")
                 break
             except ConvergenceError as why:
-                ended_by = (f"{jump_from} at delta = {delta:.6g} R; no jump from there: "
+                ended_by = (f"{jump_from} at delta = {before:.6g} R; no jump from there: "
                             f"{why}")
-                break
-            if cn.d.cavity is not None and cn.d.cavity.sealed and _opens(cn, x):
-                ended_by = (f"pocket opened: in the jump from delta = {states[-1].delta:.6g} "
-                            f"R ({jump_from}), the contact ring around it is lost")
                 break
             if gaps(d, x, cn.candidates).min() > adhesion.reach:
                 ended_by = ""       # the jump leaves the law's reach: detached

@@ -74,6 +74,8 @@ class ArcSettings:
     #                            that left the cohesive range in the tests and the base
     #                            shell's at lambda 3 (both interfaces, eight elements
     #                            across the zone) passed one within 13 states
+    mirror: bool = True        # a conservative path (`conservative`) reads its retraction
+    #                            from its approach, reversed: it is the same curve
 
 
 @dataclass(frozen=True, eq=False)
@@ -270,7 +272,9 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
     switched off (`cohesive.scaled` by SWITCH_OFF: contact alone; no_slip nodes held where
     they touch), switch it on at the turn at fixed delta (`_switch_on`; the path's state
     at the turn is the switched-on one, the approach's Pi that of the switched-off law),
-    then retract as usual."""
+    then retract as usual.  A `conservative` path (settings.mirror) is not traced back:
+    its retraction is its approach reversed (`_retraced`), and its approach resolves each
+    least P as a retraction does."""
     if not (math.isfinite(delta_max) and delta_max > 0):
         raise ValueError(f"delta_max: {delta_max!r} must be a finite number > 0 (units of R)")
     if interface not in INTERFACES:
@@ -299,6 +303,9 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
     ended_by = f"step limit: {s.max_steps} states"
     outer_z = d.uz(d.capmesh.outer[cn.candidates])
     stalled = Stall()
+    mirrored = s.mirror and conservative(iface, interface, adhesion_free_approach)
+    before = None           # a mirrored approach: (t, x, delta, ds, least) before its last step
+    looked_back = 0         # ... and the steps it took again (at most s.max_resolve)
     while len(states) < s.max_steps:
         # the step: no outer gap changes by more than dx_max delta_c (or dx_travel
         # delta_max) on the tangent
@@ -319,11 +326,24 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
                 break
             continue
         state = _state(cn, x_new, d_new, K, r, t_new, full + chord)
-        if (turn >= 0 and halvings < s.max_resolve and len(states) - 1 > turn
-                and _passes_least(states[-1], state, least, ds, s)):
+        # (a mirrored path's approach is its retraction: resolved once the law acts)
+        resolving = ((turn >= 0 or mirrored and min(states[-1].c, state.c) > 0)
+                     and halvings < s.max_resolve and len(states) - 1 > turn
+                     and _passes_least(states[-1], state, least))
+        if resolving and _coarse(states[-1], state, ds, s):
             ds *= 0.5               # resolve the least P: a corner where the contact is lost
             halvings += 1
             continue
+        if (resolving and turn < 0 and before is not None and looked_back < s.max_resolve
+                and _coarse(states[-2], states[-1], before[3], s)):
+            # the approach reaches a least P through the corner the retraction leaves it
+            # by: the step before is taken again, halved, as the retraction's would be
+            t, x, delta, ds, least = before[0], before[1], before[2], 0.5 * before[3], before[4]
+            states.pop()
+            before = None
+            looked_back += 1
+            continue
+        before = (t, x, delta, ds, least) if mirrored else None
         if state.P < least:
             least, halvings = state.P, 0
         t, x, delta = t_new, x_new, d_new
@@ -345,6 +365,14 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
                 states.append(_state(cn, x, delta, K, r, t, n))
                 if progress is not None:
                     progress(states[-1])
+            elif mirrored:
+                turn = len(states) - 1
+                states += _retraced(states, lambda q: gaps(d, q.x, cn.candidates).min()
+                                    > law.reach)
+                ended_by = ("left the cohesive range"
+                            if gaps(d, states[-1].x, cn.candidates).min() > law.reach else
+                            "the retraction reached the first state, in the cohesive range")
+                break
             else:
                 t = (-t[0], -t[1])
             turn = len(states) - 1
@@ -385,6 +413,26 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
                     ended_by = f"no tangent after the stuck nodes changed ({err})"
                     break
     return ArcPath(tuple(states), turn, ended_by, cn.timer)
+
+
+def conservative(iface: Interface, interface: str, adhesion_free_approach: bool) -> bool:
+    """True if the path's states depend on delta alone, not on the way there: frictionless
+    contact with the normal-only law acting from the first touch (no held nodes, no
+    anchors, no switch).  Its equilibrium states form one curve, which the retraction
+    follows back from the turn: the approach, reversed."""
+    return interface == "frictionless" and iface.beta is None and not adhesion_free_approach
+
+
+def _retraced(approach: list, out_of_range) -> list:
+    """The retraction of a conservative path: the states of `approach` before its last
+    (the turn) in reverse order, each tangent reversed, up to the first for which
+    `out_of_range(state)` holds (the shell has left the cohesive range), included."""
+    back = []
+    for q in reversed(approach[:-1]):
+        back.append(replace(q, slope=(-q.slope[0], -q.slope[1])))
+        if out_of_range(q):
+            break
+    return back
 
 
 def _switch_on(cn, iface, c, x, delta, stuck, interface):
@@ -549,13 +597,15 @@ class Stall:
         return self.since
 
 
-def _passes_least(old: ArcState, new: ArcState, least: float, ds: float,
-                  s: ArcSettings) -> bool:
-    """True if the retraction step from `old` to `new` (arc length ds) passes a least P
-    (dP/ds turns from < 0 to > 0) at or below `least`, the least P of the retraction so
-    far, and P may vary across it by more than s.P_resolve |P| (|dP/ds| ds at either end)."""
-    if not (old.slope[1] < 0 < new.slope[1] and min(old.P, new.P) <= least):
-        return False
+def _passes_least(old: ArcState, new: ArcState, least: float) -> bool:
+    """True if the step from `old` to `new` passes a least P (dP/ds turns from < 0 to > 0)
+    at or below `least`, the least P of the leg so far."""
+    return old.slope[1] < 0 < new.slope[1] and min(old.P, new.P) <= least
+
+
+def _coarse(old: ArcState, new: ArcState, ds: float, s: ArcSettings) -> bool:
+    """True if P may vary across the step from `old` to `new` (arc length ds) by more than
+    s.P_resolve |P| (|dP/ds| ds at either end)."""
     return max(abs(old.slope[1]), abs(new.slope[1])) * ds > s.P_resolve * abs(min(old.P, new.P))
 
 

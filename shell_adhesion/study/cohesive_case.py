@@ -59,8 +59,9 @@ ZONE_EDGES_MIN = 2.0          # fewer outer edges across the cohesive zone: a wa
 # mesh (its next coarser mesh, the error bar's, has half as many): where the named mesh's
 # apex elements are larger, its sizes at the contact are scaled down to this.  Eight are
 # more accurate in fewer states (hemisphere, lambda 1: P* +0.57 -> +0.27 % of Maugis';
-# base shell, lambda 3: 1630 -> 542 states), but the coarse companion then has four, and
-# at lambda 3 it stalls on a snap (no error bars): `zone_elements` asks for them
+# base shell, lambda 3: 1690 -> 553 states), but the coarse companion then has four: at
+# lambda 3 no_slip's stalls on a snap (no error bars), and the frictionless one's snapping
+# makes a bar 50 times eight's distance from sixteen: `zone_elements` asks for them
 ZONE_ELEMENTS = 4.0
 # a path that does not turn round or does not leave the cohesive range (the contact edge
 # snapping from node to node until the state bound) is traced once more with this many

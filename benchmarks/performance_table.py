@@ -12,9 +12,9 @@ Rows (`--rows all` for every one; the default is the cheap ones, about 5 minutes
               (benchmarks/calculix_loading.py, needs `ccx`)
     study     `shell-adhesion run workflow.yaml` cold / the CalculiX loading (~5-8 min)
     warm      the same study again into a new folder on its catalogue (runs `study` first)
-    pytest    `python -m pytest -q` on a fresh clone of the committed HEAD (~15 min)
+    pytest    `python -m pytest -q` on a fresh clone of the committed HEAD (about 7 min)
     cohesive  `case --adhesion dugdale --tabor 3 --interface frictionless --no-error-bars`
-              on the base shell (8-11 min)
+              on the base shell (about 2.5 min)
     map       `map build` of the default pull-off map, cold (stopped unfinished after 37
               min on 2 cores in December 2026)
 

@@ -74,3 +74,14 @@ def test_only_a_conservative_path_is_mirrored():
     assert not conservative(iface, "no_slip", False)           # held nodes: a history
     assert not conservative(iface, "frictionless", True)       # the law switched on at the turn
     assert not conservative(Interface(iface.d, iface.law, 1.0), "no_slip", False)  # anchors
+
+
+def test_a_path_that_starts_in_the_cohesive_range_is_traced_back():
+    """Its approach does not contain the retraction's end (out of the range): the path
+    is traced both ways, and leaves the range as before."""
+    iface = _hemisphere(0.3)
+    path = trace(iface, DELTA_MAX, delta0=-0.5 * iface.law.reach)
+    assert path.ended_by == "left the cohesive range" and path.turn > 0
+    approach = {id(s.x) for s in path.states[:path.turn + 1]}
+    assert not any(id(s.x) in approach for s in path.states[path.turn + 1:])
+    assert path.states[-1].delta < path.states[0].delta

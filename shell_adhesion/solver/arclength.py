@@ -272,9 +272,9 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
     switched off (`cohesive.scaled` by SWITCH_OFF: contact alone; no_slip nodes held where
     they touch), switch it on at the turn at fixed delta (`_switch_on`; the path's state
     at the turn is the switched-on one, the approach's Pi that of the switched-off law),
-    then retract as usual.  A `conservative` path (settings.mirror) is not traced back:
-    its retraction is its approach reversed (`_retraced`), and its approach resolves each
-    least P as a retraction does."""
+    then retract as usual.  A `conservative` path (settings.mirror) that starts out of the
+    cohesive range is not traced back: its retraction is its approach reversed
+    (`_retraced`), and its approach resolves each least P as a retraction does."""
     if not (math.isfinite(delta_max) and delta_max > 0):
         raise ValueError(f"delta_max: {delta_max!r} must be a finite number > 0 (units of R)")
     if interface not in INTERFACES:
@@ -303,7 +303,9 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
     ended_by = f"step limit: {s.max_steps} states"
     outer_z = d.uz(d.capmesh.outer[cn.candidates])
     stalled = Stall()
-    mirrored = s.mirror and conservative(iface, interface, adhesion_free_approach)
+    # (from a first state out of the cohesive range: the reversed approach leaves it)
+    mirrored = (s.mirror and conservative(iface, interface, adhesion_free_approach)
+                and gaps(d, states[0].x, cn.candidates).min() > law.reach)
     before = None           # a mirrored approach: (t, x, delta, ds, least) before its last step
     looked_back = 0         # ... and the steps it took again (at most s.max_resolve)
     while len(states) < s.max_steps:
@@ -369,9 +371,7 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
                 turn = len(states) - 1
                 states += _retraced(states, lambda q: gaps(d, q.x, cn.candidates).min()
                                     > law.reach)
-                ended_by = ("left the cohesive range"
-                            if gaps(d, states[-1].x, cn.candidates).min() > law.reach else
-                            "the retraction reached the first state, in the cohesive range")
+                ended_by = "left the cohesive range"
                 break
             else:
                 t = (-t[0], -t[1])

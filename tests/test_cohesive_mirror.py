@@ -44,7 +44,7 @@ def test_the_retraction_of_a_conservative_path_is_its_approach_reversed():
     approach = mirrored.states[:mirrored.turn + 1]
     back = mirrored.states[mirrored.turn:]
     assert [s.x is q.x for s, q in zip(back, reversed(approach))] == [True] * len(back)
-    assert all(s.slope == (-q.slope[0], -q.slope[1]) or s is q
+    assert all(s is not q and s.slope == (-q.slope[0], -q.slope[1])
                for s, q in zip(back[1:], reversed(approach[:-1])))
     # every traced retraction state lies on the approach's curve: within 0.5 % of the
     # path's ranges of the polyline through the approach's states (measured 0.3 %, the

@@ -299,7 +299,8 @@ def trace(iface: Interface, delta_max: float, delta0: float = None,
     states = [_state(cn, x, delta, K, r, t, 0)]
     ds = 0.1 * law.delta_c
     turn = -1
-    least, halvings = math.inf, 0        # the least P of the retraction so far
+    least, halvings = math.inf, 0        # the least P of the retraction (or of a mirrored
+    #                                      approach) so far
     ended_by = f"step limit: {s.max_steps} states"
     outer_z = d.uz(d.capmesh.outer[cn.candidates])
     stalled = Stall()

@@ -9,9 +9,10 @@ shell's ring survives at delta_max, gamma_c / (C10 R) = LIMIT_SCALE (t/R) (delta
 (solver.ring_adhesion, measured), or --gamma-hat for every shell; each solved on --mesh and on
 --coarser, P*'s error bar from the two (solver.error_bars.error_bar, order
 solver.error_bars.assumed_order); the open shell too, or, where its pull on --coarser stops
-short (t/R 0.02: at a fold near delta = 0 where the jump finds no state), on --open-mesh
-with its bar from --mesh.  The gain is P* over the open shell's; its bar adds the
-two relative bars (|gain| (b/|P*| + b_open/|P*_open|)).  A pull that stops at a fold it
+short (at a fold near delta = 0 where the jump finds no state), on the default mesh with
+its bar from --mesh; --open-mesh: the open shell on that mesh, its bar from --mesh.  The
+gain is P* over the open shell's; its bar adds the two relative bars (|gain| (b/|P*| +
+b_open/|P*_open|)).  A pull that stops at a fold it
 cannot jump from gives a bound (marked "<="), no bar.
 
 Prints one table (P* in C10 R^2 and N for --R-mm, --C10-kPa; gain; seconds) and, with
@@ -64,8 +65,9 @@ def main(argv=None):
     ap.add_argument("--tabor", type=float, default=0.3)
     ap.add_argument("--mesh", default="coarse")
     ap.add_argument("--coarser", default="coarser")
-    ap.add_argument("--open-mesh", default="default",
-                    help="the open shell's mesh where its pull on --coarser stops short")
+    ap.add_argument("--open-mesh", default=None,
+                    help="the open shell's mesh, its bar from --mesh (default: --mesh, or "
+                         "default where the open shell's pull on --coarser stops short)")
     ap.add_argument("--p-atm-kPa", type=float, default=101.325)
     ap.add_argument("--C10-kPa", type=float, default=300.0)
     ap.add_argument("--R-mm", type=float, default=20.0)
@@ -123,10 +125,14 @@ def main(argv=None):
                 ends += f"; no bar: on {coarser} {gc.ended_by[:60] or 'no pull'}"
             return P, bar, ends, wall
 
-        P0, b0, ends0, wall0 = answer(0.0, "vented", a.mesh, a.coarser)
-        if P0 is not None and b0 is None:       # its coarser pull stopped short
-            P0, b0, ends0, more = answer(0.0, "vented", a.open_mesh, a.mesh)
+        if a.open_mesh:
+            P0, b0, ends0, wall0 = answer(0.0, "vented", a.open_mesh, a.mesh)
             ends0 += f" ({a.open_mesh} mesh, bar from {a.mesh})"
+        else:
+            P0, b0, ends0, wall0 = answer(0.0, "vented", a.mesh, a.coarser)
+        if not a.open_mesh and P0 is not None and b0 is None:   # its coarser pull stopped
+            P0, b0, ends0, more = answer(0.0, "vented", "default", a.mesh)
+            ends0 += f" (default mesh, bar from {a.mesh})"
             wall0 += more
         shown = _value(P0, b0, ends0.startswith("bound"))
         print(f"| {T:g} | {H:g} | {dm:g} t | {gamma:.3g} | open | {shown} | {_bar(b0)} | "

@@ -142,6 +142,14 @@ class CavityLoad:
         r, zp = self._trace(x)
         return float(np.pi * np.sum(_GAUSS_W * r * r * zp))
 
+    def through_lid(self, x) -> bool:
+        """Whether the inner surface of state x rises above its rim, where the rigid lid
+        closes the cavity (the shell inverted through it: the lid's contact is not
+        modelled)."""
+        z = self.Z0 + x[self.dofs][:, 3:]
+        rim = np.unravel_index(np.argmax(self.R0), self.R0.shape)
+        return bool(z.max() > z[rim] + 1e-9)
+
     def _trace(self, x):
         u = x[self.dofs]
         r = (self.R0 + u[:, :3]) @ _N.T        # (E, Q)

@@ -16,6 +16,7 @@ import scipy.sparse as sp
 from skfem import CellBasis, ElementQuad1, ElementQuad2
 
 from .material import NEO_HOOKE, Material, energy, lagrangian_derivatives, limit_exceeded
+from .material import lagrangian as lagrangian_density
 from .mesh import CapMesh
 from shell_adhesion.errors import ConvergenceError
 
@@ -176,6 +177,17 @@ def strain_energy(d: Discretisation, x) -> float:
         J = (f[0] * f[3] - f[1] * f[2]) * f[4]
         W = W + p * (J - 1.0) - 0.25 * d.material.D1_times_C10 * p * p
     return float(np.sum(W * d.w))
+
+
+def lagrangian(d: Discretisation, x) -> float:
+    """The mixed form's Lagrangian / (C10 R^3), whose gradient is `residual`: the integral
+    of `material.lagrangian` plus the cavity's and the held edge's energies; equal to
+    `potential_energy` where J = 1.  The merit of a step that leaves J = 1 to first order
+    only (`arclength._descend`)."""
+    f, p = _fields(d, x)
+    L = float(np.sum(lagrangian_density(_checked(d, f), p, d.material) * d.w))
+    L = L if d.cavity is None else L + d.cavity.energy(x)
+    return L if d.edge is None else L + d.edge.energy(x)
 
 
 def residual(d: Discretisation, x):

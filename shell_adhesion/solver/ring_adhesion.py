@@ -6,7 +6,7 @@ A thin deep shell pressed past its snap touches the plane in a ring around a dim
 delta, as `snap.trace_loading` switches it on at the turn (the law ramped in at fixed
 delta, `arclength._switch_on`), widens the ring.  Above a limit gamma_c no equilibrium is
 left near the ring: the ring's inner edge zips inward and the dimple closes (the damped
-descent of the switch, allowed enough steps, settles on a flat contact disc).
+descent of the switch settles on a flat contact disc, `arclength.ESCAPE_STEPS`).
 `ring_holds` answers one law, `adhesion_limit` brackets gamma_c by bisection.
 
 Dimensionless as the solver (lengths / R, gamma / (C10 R), forces / (C10 R^2)).

@@ -349,7 +349,11 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
     the path).  A loading that comes back off the plane (the continuation turned round
     onto the branch it came along) returns to where it turned and pushes the rim on from
     there (`_jump`, onward: a jump where the energy falls, else the branch goes on from
-    delta + push).  `progress(state)` is called after each state if given.
+    delta + push); so does a loading from a depressurised start whose rim load fell to
+    nothing (lifted off: the cavity holds the dimple off the plane).  A state whose
+    inner surface rises above the rim, through the cavity's rigid lid (not modelled),
+    ends the path before it ("inverted through the cavity's lid ...").  `progress(state)`
+    is called after each state if given.
 
     `x0` the state at delta = 0 (default the undeformed one): the free shell under its
     cavity's pressure, just touching the plane (cavity.first_touch, on its moved mesh);
@@ -428,7 +432,15 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
         if progress is not None:
             progress(states[-1])
     clock = time.perf_counter()
+    lid = _own_cavity(d)
     while len(states) < s.max_states:
+        if lid is not None and lid.through_lid(states[-1].x):
+            states.pop()
+            states[-1] = dataclasses.replace(states[-1], anchor_jump=0.0)
+            ended_by = (f"inverted through the cavity's lid from delta = "
+                        f"{states[-1].delta:.6g} R: the next state's inner surface rises "
+                        "above the rim, where the rigid lid would stop it (not modelled)")
+            break
         ds = min(ds, s.ds_max, dz_max / (np.abs(t[0][outer_z]).max() + abs(t[1])))
         jump_from = ""
         try:
@@ -473,11 +485,16 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
                 ended_by = (f"pocket opened: the contact ring around it is lost between "
                             f"delta = {delta:.6g} R and {delta + 2 * ds * t[1]:.6g} R")
                 break
-            if ds < s.ds_min and turn < 0 and _lifted_off(cn.d, states):
+            if (ds < s.ds_min and turn < 0 and _lifted_off(cn.d, states)
+                    and not (s.jump_push > 0 and delta < delta_max)):
                 ended_by = (f"lifted off at delta = {delta:.6g} R: P fell to "
                             f"{states[-1].P:.3g} C10 R^2; the cavity's pressure holds the "
                             "shell's dimple off the plane on its own (a free equilibrium)")
                 break
+            if ds < s.ds_min and turn < 0 and _lifted_off(cn.d, states):
+                # lifted off: the rim pushed on and the shell let settle (`_jump`,
+                # onward), as under displacement control
+                err = _LiftedOff(f"lifted off at delta = {delta:.6g} R")
             if (ds < s.ds_min and adhesion is not None and 0 <= turn < len(states) - 1
                     and s.jump_push > 0 and not states[-1].landed):
                 # the adhesive unloading finds no state ahead (Newton does not converge
@@ -491,9 +508,11 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
                         and delta < delta_max and not states[-1].landed):
                     break
                 try:
+                    lifted = isinstance(err, _LiftedOff)
                     x, delta, K, r, it, landed = _jump(
-                        cn, c, x, delta, s.jump_push * d.capmesh.cap.t, s.jump_descent,
-                        onward=isinstance(err, _TurnedBack))
+                        cn, c, x, delta, s.jump_push * d.capmesh.cap.t,
+                        LIFT_DESCENT if lifted else s.jump_descent,
+                        onward=lifted or isinstance(err, _TurnedBack))
                 except ConvergenceError as why:
                     ended_by += f"; no jump from there: {why}"
                     break
@@ -583,8 +602,13 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
             if sticks:
                 beta = 1.0
                 anchors = point_anchors_at(cn.iface, x)
-            cn = _Continuation(Interface(seal(cn.d, x) if seals else cn.d, cn.iface.law, beta),
-                               "frictionless", arc)
+            try:
+                sealed = seal(cn.d, x) if seals else cn.d
+            except ValueError:      # the shell is off the plane (a collapsed dimple)
+                ended_by = (f"nothing to seal at delta = {delta:.6g} R: no contact ring "
+                            "encloses a gap")
+                break
+            cn = _Continuation(Interface(sealed, cn.iface.law, beta), "frictionless", arc)
             cn.anchors = anchors
             timers.append(cn.timer)
             c = constraints(cn.d, "frictionless", [])
@@ -627,12 +651,12 @@ def _fold(states) -> int:
 def _jump(cn, c, x, delta, push, steps, onward=False):
     """The displacement-controlled jump from the state x at delta / R where the loading
     cannot go on: the rim pushed on by `push` / R, the shell let settle there by damped
-    descent (`arclength._descend`, at most `steps` steps), and the state it settles in
-    brought back to delta on its own branch (Newton at fixed delta).  Returns (x, delta,
-    K, r, iterations, landed): landed True, at delta.  Where the shell settles back on
-    the branch it was on (its energy at delta, U + Pi + the gas's and the cavity load's
-    (`forms.potential_energy`), not below the start's by JUMP_GAIN), that
-    branch goes on past delta: with `onward`, the settled state at delta + push is
+    descent (`arclength._descend`, at most `steps` steps and its escape), and the state
+    it settles in brought back to delta on its own branch (Newton at fixed delta).
+    Returns (x, delta, K, r, iterations, landed): landed True, at delta.  Where the
+    shell settles back on the branch it was on (its energy at delta, U + Pi + the gas's
+    and the cavity load's (`forms.potential_energy`), not below the start's by
+    JUMP_GAIN), that branch goes on past delta: with `onward`, the settled state at delta + push is
     returned (landed False), else ConvergenceError; ConvergenceError also if it does not
     settle or finds no state at delta."""
     fixed = (np.zeros(cn.d.ndof), 1.0)
@@ -651,7 +675,7 @@ def _jump(cn, c, x, delta, push, steps, onward=False):
             z[c.rimz] = -(delta + f * push)
             z, _, K, r, (more, chords) = cn.correct(c, z, delta + f * push, fixed, 0.0)
             full, chord = full + more, chord + chords
-    energy = lambda v: potential_energy(cn.d, v) + cn.iface.energy(v)   # noqa: E731
+    energy = lambda v: potential_energy(cn.d, v) + cn.iface.energy(v, cn.anchors)   # noqa: E731
     if energy(z) < energy(x) - JUMP_GAIN * abs(energy(x)):
         return z, delta, K, r, n + full + chord, True
     if not onward:
@@ -714,6 +738,10 @@ class _FoldPassed(Exception):
     """An adhesive unloading step passed a fold of delta (delta rises again)."""
 
 
+class _LiftedOff(ConvergenceError):
+    """A loading whose rim load fell to nothing: the cavity holds the dimple off the plane."""
+
+
 class _TurnedBack(ConvergenceError):
     """A loading step came back off the plane: the path turned round onto its own branch."""
 
@@ -724,6 +752,18 @@ def _pocket_of(d):
 
 
 LIFT_SHARE = 1e-4   # `_lifted_off`: P below this share of its largest on the path
+LIFT_DESCENT = 600  # `_jump` from a lift-off: the residual-scaled descent's steps before it
+#                     escapes (`arclength.ESCAPE_STEPS`): the lifted-off dimple is a free
+#                     state the suction destabilises, its flow creeps from the start (t/R
+#                     0.02, h/R 1, 0.2 p_cl, coarser mesh: with 3000 the same landing, 19 s
+#                     against 4 s)
+
+
+def _own_cavity(d):
+    """The shell's own cavity load (`cavity.CavityLoad`; bound alone or beside a
+    pocket), None without one."""
+    cavity = getattr(d.cavity, "shell", d.cavity)
+    return cavity if hasattr(cavity, "through_lid") else None
 
 
 def _lifted_off(d, states) -> bool:

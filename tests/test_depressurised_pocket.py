@@ -145,8 +145,9 @@ def test_at_a_fifth_of_p_cl_the_suction_holds_the_dimple_and_the_shell_lifts_off
 def test_pressed_past_its_lift_off_the_dimple_collapses_into_the_cavity():
     # 0.2 p_cl (coarser mesh, 4 s): lifted off at 4.19 t, pushed on, the shell jumps to a
     # free state (P 0) whose dimple the suction has drawn deep into the cavity (the
-    # apex 0.80 R above the plane, below the lid at the rim, 0.92 R); pressed on to 5 t
-    # it stays free, and at the turn no ring is left to seal
+    # apex 0.81 R above the plane, below the lid at the rim, 0.92 R; `python
+    # benchmarks/lift_off.py`); pressed on to 5 t it stays free (the apex 0.80 R up),
+    # and at the turn no ring is left to seal
     d, path, _ = _path(0.2)
     assert path.ended_by.startswith("nothing to seal at delta")
     (jump,) = path.jumps()

@@ -7,10 +7,10 @@ Measured (`python benchmarks/ring_adhesion.py --tabor 0.3 --mesh MESH --lo 1e-5 
 (coarser; not monotone: 4.27e-5 fails there), [4.07e-5, 4.27e-5] (coarse), [4.13e-5, 4.26e-5] (default); below it the ring
 widens inward as gamma grows (coarse: inner edge 0.3814, 0.3755, 0.3696, 0.3609, 0.3379 R
 at gamma 0, 2.1e-5, 3.1e-5, 3.7e-5, 4.07e-5: faster and faster, a fold); above it the
-switch finds no equilibrium near the ring (its descent settles on a flat disc).  At t/R 0.01 (coarse, `--t 0.01`) the limit
-is [4.88e-6, 5.0e-6]: 8.6 times lower, as (t/R)^3 at the same delta / t; pressed to 10 t
-it is [1.64e-4, 1.72e-4], four times the 5 t value: gamma_c / (C10 R) = 0.21 (t/R)
-(delta/R)^2 within 7 % (ring_adhesion.LIMIT_SCALE).
+switch finds no equilibrium near the ring (its descent settles on a flat disc).  At t/R
+0.01 (coarse, `--t 0.01`) the limit is [4.88e-6, 5.0e-6]: 8.6 times lower, as (t/R)^3 at
+the same delta / t; pressed to 10 t it is [1.64e-4, 1.72e-4], four times the 5 t value:
+gamma_c / (C10 R) = 0.21 (t/R) (delta/R)^2 within 7 % (ring_adhesion.LIMIT_SCALE).
 """
 import pytest
 

@@ -434,12 +434,8 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
     clock = time.perf_counter()
     lid = _own_cavity(d)
     while len(states) < s.max_states:
-        if lid is not None and lid.through_lid(states[-1].x):
-            states.pop()
-            states[-1] = dataclasses.replace(states[-1], anchor_jump=0.0)
-            ended_by = (f"inverted through the cavity's lid from delta = "
-                        f"{states[-1].delta:.6g} R: the next state's inner surface rises "
-                        "above the rim, where the rigid lid would stop it (not modelled)")
+        if _through_lid(lid, states):
+            ended_by = _lid_ends(states)
             break
         ds = min(ds, s.ds_max, dz_max / (np.abs(t[0][outer_z]).max() + abs(t[1])))
         jump_from = ""
@@ -628,7 +624,24 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
                 progress(states[-1])
         if it <= s.easy:
             ds *= s.grow
+    if _through_lid(lid, states):
+        ended_by = _lid_ends(states)
     return SnapPath(tuple(states), ended_by, _sum(timers), turn)
+
+
+def _through_lid(lid, states) -> bool:
+    """Whether the last state's inner surface rises above the rim of the cavity `lid`
+    (None: no cavity of the shell's own)."""
+    return lid is not None and len(states) > 1 and lid.through_lid(states[-1].x)
+
+
+def _lid_ends(states) -> str:
+    """Drop the last state (through the lid) and say where the path ends."""
+    states.pop()
+    states[-1] = dataclasses.replace(states[-1], anchor_jump=0.0)
+    return (f"inverted through the cavity's lid from delta = {states[-1].delta:.6g} R: the "
+            "next state's inner surface rises above the rim, where the rigid lid would "
+            "stop it (not modelled)")
 
 
 def _append(states, after: SnapState, at_same_delta: bool):
@@ -656,9 +669,9 @@ def _jump(cn, c, x, delta, push, steps, onward=False):
     Returns (x, delta, K, r, iterations, landed): landed True, at delta.  Where the
     shell settles back on the branch it was on (its energy at delta, U + Pi + the gas's
     and the cavity load's (`forms.potential_energy`), not below the start's by
-    JUMP_GAIN), that branch goes on past delta: with `onward`, the settled state at delta + push is
-    returned (landed False), else ConvergenceError; ConvergenceError also if it does not
-    settle or finds no state at delta."""
+    JUMP_GAIN), that branch goes on past delta: with `onward`, the settled state at
+    delta + push is returned (landed False), else ConvergenceError; ConvergenceError
+    also if it does not settle or finds no state at delta."""
     fixed = (np.zeros(cn.d.ndof), 1.0)
     y = x.copy()
     y[c.rimz] = -(delta + push)

@@ -85,6 +85,9 @@ def main(argv=None):
             if v is not None and not v > 0:
                 raise InputError(f"{name}: {v!r} must be > 0 (the gain is over an adhesive "
                                  "open shell)")
+        if a.open_mesh == a.mesh:
+            raise InputError(f"--open-mesh: {a.open_mesh!r} must differ from --mesh (the "
+                             "open shell's bar comes from --mesh)")
         p_atm = pk.p_atm_over_C10(a.p_atm_kPa, a.C10_kPa)
         md.sigma0_of(a.tabor, 1e-5, 1.0, K_OVER_C10)     # the Tabor parameter's check
     except ValueError as err:       # InputError is one

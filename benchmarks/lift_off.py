@@ -22,6 +22,7 @@ from shell_adhesion.solver import cavity as cv
 from shell_adhesion.solver import pocket as pk
 from shell_adhesion.solver.forms import discretise
 from shell_adhesion.solver.mesh import cap_mesh, mesh_spec
+from shell_adhesion.solver.postprocess import profiles
 from shell_adhesion.solver.snap import SnapSettings, loading_cap, ring_arc, trace_loading
 
 
@@ -74,14 +75,6 @@ def main(argv=None):
     return 0
 
 
-def _meridian(d, state):
-    """(r, z) / R of the outer surface of `state`, from the axis to the rim."""
-    cm = d.capmesh
-    nodes = cm.outer[np.argsort(cm.nodes[0][cm.outer])]
-    return (cm.nodes[0][nodes] + state.x[d.ur(nodes)],
-            cm.nodes[1][nodes] + state.x[d.uz(nodes)])
-
-
 def _figure(paths, T, out):
     import matplotlib
     matplotlib.use("Agg")
@@ -97,7 +90,7 @@ def _figure(paths, T, out):
         if not path.jumps():
             shown = [(path.states[-1], "last state")]
         for m, (st, label) in enumerate(shown):
-            r, z = _meridian(d, st)
+            r, z = profiles(d, st.x)[0]
             bx.plot(r, z, f"C{k}" + ("-" if m else "--"),
                     label=f"-{f:g} p_cl, {label}, δ = {st.delta / T:.2f} t")
             if m or len(shown) == 1:

@@ -522,9 +522,8 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
                     break
                 t = cn.tangent_at(K, c)
                 now = time.perf_counter()
-                after = _state(cn, x, delta, K, r, t, it, now - clock)
-                landed = landed or _jumped_beyond(states, after)
-                _append(states, dataclasses.replace(after, landed=landed), jumped=landed)
+                _append_landing(states, _state(cn, x, delta, K, r, t, it, now - clock),
+                                landed)
                 clock = now
                 if progress is not None:
                     progress(states[-1])
@@ -555,9 +554,7 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
                 break
             t = cn.tangent_at(K, c, (np.zeros(d.ndof), -1.0))
             now = time.perf_counter()
-            after = _state(cn, x, delta, K, r, t, it, now - clock)
-            landed = landed or _jumped_beyond(states, after)
-            _append(states, dataclasses.replace(after, landed=landed), jumped=landed)
+            _append_landing(states, _state(cn, x, delta, K, r, t, it, now - clock), landed)
             clock = now
             if progress is not None:
                 progress(states[-1])
@@ -666,6 +663,13 @@ def _append(states, after: SnapState, jumped: bool):
             - push_work(before, after)))
 
 
+def _append_landing(states, after: SnapState, landed: bool):
+    """Append the state `_jump` returned: landed (at its delta), or, settled at the
+    push's delta, landed if `_jumped_beyond`; a landing's dissipation as `_append`."""
+    landed = landed or _jumped_beyond(states, after)
+    _append(states, dataclasses.replace(after, landed=landed), jumped=landed)
+
+
 def push_work(before: SnapState, after: SnapState) -> float:
     """The work of P over a jump from `before` to `after` (C10 R^3): the rim pushed from
     one's delta to the other's against the mean of their P (0 at the same delta)."""
@@ -728,7 +732,8 @@ def _jump(cn, c, x, delta, push, steps, onward=False):
                 continue
             z, f, full, chord = w, g, full + more, chord + chords
     energy = lambda v: potential_energy(cn.d, v) + cn.iface.energy(v, cn.anchors)   # noqa: E731
-    if energy(z) < energy(x) - JUMP_GAIN * abs(energy(x)):
+    e_x = energy(x)
+    if energy(z) < e_x - JUMP_GAIN * abs(e_x):
         return z, delta, K, r, n + full + chord, True
     if not onward:
         raise ConvergenceError("the shell settled back where it was")

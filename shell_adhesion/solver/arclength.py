@@ -483,7 +483,7 @@ def _held_solve(cn, c, x, delta, stuck, interface, free_slip, fixed, max_updates
         except ConvergenceError:
             if not descend:
                 raise
-            x, full = _descend(cn, c, x)
+            x, full = _descend(cn, c, x, rise=ESCAPE_RISE)
             x, _, K, r, (n, chord) = cn.correct(c, x, delta, fixed, 0.0)
             full += n
         its += full + chord
@@ -498,7 +498,7 @@ def _held_solve(cn, c, x, delta, stuck, interface, free_slip, fixed, max_updates
     raise ConvergenceError(f"the held nodes still changed after {max_updates} solves")
 
 
-def _descend(cn, c, x, max_iter=600, mu0=1e-2):
+def _descend(cn, c, x, max_iter=600, mu0=1e-2, rise=np.inf):
     """Pseudo-transient continuation at fixed delta, held nodes and anchors: steps
     (K + mu D) dx = -r on the free dofs, D the mean of |diag K| added to the displacement
     dofs' diagonal only (an overdamped flow of the displacements, the incompressibility
@@ -509,6 +509,7 @@ def _descend(cn, c, x, max_iter=600, mu0=1e-2):
     delta) that the corrector alone cannot, to the equilibrium the damped flow settles
     in.  A flow that has not settled after max_iter steps creeps away from an unstable
     state (the residual barely changes, and mu with it): up to ESCAPE_STEPS more steps
+    (escaping sooner, once the residual has risen to `rise` times the least it reached)
     then lower mu by at least ESCAPE each, every one of them required to lower the
     energy (`forms.lagrangian` plus the interface's; mu raised tenfold where it does
     not).  A sealed gas (the pocket's: `on_gas_law` of d.cavity) stays on its law, its
@@ -526,12 +527,15 @@ def _descend(cn, c, x, max_iter=600, mu0=1e-2):
     on_gas_law = getattr(d.cavity, "on_gas_law", lambda y: y)
     guarded = hasattr(d.cavity, "on_gas_law") and d.cavity.sealed     # DESCENT_GROWTH
     energy = lambda v: lagrangian(d, v) + cn.iface.energy(v, cn.anchors)     # noqa: E731
-    mu, res_before, E = mu0, None, None
+    mu, res_before, E, least, escape_at = mu0, None, None, np.inf, max_iter
     for it in range(max_iter + ESCAPE_STEPS):
-        escaping = it >= max_iter
         if it:
             K, r = cn.linearise(x)
         res = float(np.linalg.norm(r[c.free]))
+        least = min(least, res)
+        if escape_at == max_iter and res > rise * least:
+            escape_at = it                  # creeping away from an unstable state
+        escaping = it >= escape_at
         if res_before is not None:
             lower = mu * min(res / res_before, ESCAPE) if escaping else mu * res / res_before
             mu = float(np.clip(lower, 1e-9, MU_OPENS))
@@ -573,7 +577,7 @@ def _descend(cn, c, x, max_iter=600, mu0=1e-2):
                 return x, it + 1
             except ConvergenceError:
                 pass
-    raise ConvergenceError(f"descent: no equilibrium after {max_iter + ESCAPE_STEPS} steps")
+    raise ConvergenceError(f"descent: no equilibrium after {it + 1} steps")
 
 
 DESCENT_GROWTH = 10.0   # `_descend` with a sealed pocket: a step that raises the residual
@@ -582,6 +586,11 @@ DESCENT_GROWTH = 10.0   # `_descend` with a sealed pocket: a step that raises th
 #                         ever; the loading's jumps without a pocket need such steps: the
 #                         sharp contact's flow found no equilibrium with the rule)
 ESCAPE = 0.7        # `_descend`, escaping: mu falls at least this much per step
+ESCAPE_RISE = 4.0   # `_switch_on`'s descents escape once the residual has risen to this many
+#                     times its least (the ring's adhesion limit, t/R 0.02, coarser mesh: the
+#                     flow's residual falls to about 1e-8 in 100 steps, then rises as it
+#                     creeps; seven switches 33 -> 21 s, the same bracket.  The jumps of
+#                     `snap._jump` keep max_iter: escaping sooner lands them elsewhere)
 ESCAPE_STEPS = 600  # `_descend`: the escaping steps after max_iter (the open thin shell,
 #                     adhesion switched on at 5 t four times above its ring's limit: the
 #                     dimple crept 3e-5 R per step and found no state in 3000 steps of the

@@ -45,7 +45,7 @@ def main(argv=None):
     def show(r):
         where = f"{r.state.contact}, P {r.state.P:.4e}" if r.state is not None else ""
         print(f"  gamma/(C10 R) {r.gamma:.4g} (delta_c {law_of(r.gamma).delta_c / T:.3g} t): "
-              f"{'holds' if r.holds else 'does not hold'}; {where}{r.why}; "
+              f"{'holds' if r.holds else 'does not hold'}; {where or r.why}; "
               f"{time.perf_counter() - t0:.1f} s", flush=True)
 
     lo, hi = adhesion_limit(d, ring, law_of, a.lo, a.hi, a.rel, progress=show)

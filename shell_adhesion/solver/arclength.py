@@ -509,7 +509,8 @@ def _descend(cn, c, x, max_iter=600, mu0=1e-2, rise=np.inf):
     delta) that the corrector alone cannot, to the equilibrium the damped flow settles
     in.  A flow that has not settled after max_iter steps creeps away from an unstable
     state (the residual barely changes, and mu with it): up to ESCAPE_STEPS more steps
-    (escaping sooner, once the residual has risen to `rise` times the least it reached)
+    (escaping sooner where `rise` is finite: once the residual has risen to `rise` times
+    the least it reached, or has not halved (STALL) in the last STALL_STEPS steps)
     then lower mu by at least ESCAPE each, every one of them required to lower the
     energy (`forms.lagrangian` plus the interface's; mu raised tenfold where it does
     not).  A sealed gas (the pocket's: `on_gas_law` of d.cavity) stays on its law, its
@@ -528,12 +529,15 @@ def _descend(cn, c, x, max_iter=600, mu0=1e-2, rise=np.inf):
     guarded = hasattr(d.cavity, "on_gas_law") and d.cavity.sealed     # DESCENT_GROWTH
     energy = lambda v: lagrangian(d, v) + cn.iface.energy(v, cn.anchors)     # noqa: E731
     mu, res_before, E, least, escape_at = mu0, None, None, np.inf, max_iter
+    history = []
     for it in range(max_iter + ESCAPE_STEPS):
         if it:
             K, r = cn.linearise(x)
         res = float(np.linalg.norm(r[c.free]))
         least = min(least, res)
-        if escape_at == max_iter and res > rise * least:
+        history.append(res)
+        stalled = it >= STALL_STEPS and res > STALL * history[it - STALL_STEPS]
+        if escape_at == max_iter and (res > rise * least or (rise < np.inf and stalled)):
             escape_at = it                  # creeping away from an unstable state
         escaping = it >= escape_at
         if res_before is not None:
@@ -587,10 +591,12 @@ DESCENT_GROWTH = 10.0   # `_descend` with a sealed pocket: a step that raises th
 #                         sharp contact's flow found no equilibrium with the rule)
 ESCAPE = 0.7        # `_descend`, escaping: mu falls at least this much per step
 ESCAPE_RISE = 4.0   # `_switch_on`'s descents escape once the residual has risen to this many
-#                     times its least (the ring's adhesion limit, t/R 0.02, coarser mesh: the
+#                     times its least, or stalls (the ring's adhesion limit, t/R 0.02: the
 #                     flow's residual falls to about 1e-8 in 100 steps, then rises as it
-#                     creeps; seven switches 33 -> 21 s, the same bracket.  The jumps of
+#                     creeps (coarser mesh) or stays there for 500 (coarse); the limit's
+#                     switches 33 -> 16 s and 56 -> 37 s, the same brackets.  The jumps of
 #                     `snap._jump` keep max_iter: escaping sooner lands them elsewhere)
+STALL_STEPS, STALL = 100, 0.5   # ... stalls: not halved over the last STALL_STEPS steps
 ESCAPE_STEPS = 600  # `_descend`: the escaping steps after max_iter (the open thin shell,
 #                     adhesion switched on at 5 t four times above its ring's limit: the
 #                     dimple crept 3e-5 R per step and found no state in 3000 steps of the

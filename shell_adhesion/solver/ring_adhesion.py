@@ -23,8 +23,8 @@ from shell_adhesion.solver.snap import SnapSettings, SnapState, _adhere, _state
 
 WIDEN_MAX = 4       # `adhesion_limit`: moves of a bracket whose ends are on one side
 # gamma_c / (C10 R) is about LIMIT_SCALE (t/R) (delta/R)^2, measured (h = R, lambda 0.3,
-# coarse mesh): t/R 0.02 at 5 t and 10 t, 4.2e-5 and 1.68e-4 (0.21); t/R 0.01 at 5 t,
-# 4.9e-6 (0.20); the rule a search starts from
+# coarse mesh): t/R 0.02 at 5 t and 10 t, 4.2e-5 and 1.79e-4 (0.21, 0.22); t/R 0.01 at
+# 5 t, 5.4e-6 (0.22); the rule a search starts from
 LIMIT_SCALE = 0.21
 
 

@@ -184,10 +184,28 @@ def test_the_adhesion_a_ring_survives_in_joules(capsys):
     assert 0.24 < lo < hi <= 1.05 * lo and hi < 0.29
     assert lo == pytest.approx(ring["gamma_lo"] * 0.3e6 * 0.02, rel=1e-12)
     assert ring["ring"].startswith("ring ") and ring["ring_at_lo"].startswith("ring ")
+    assert ring["above"] == "the dimple closes"
     assert main([*args, "--delta-max", "0.4"]) == 1
     captured = capsys.readouterr()
     assert "not a ring around a dimple: press further" in captured.err
     assert "adhesion the ring survives: not bracketed" in captured.out
+
+
+def test_an_upper_end_without_equilibrium_is_not_called_a_closed_dimple(capsys, monkeypatch):
+    """Where the bracket's upper end is a switch that found no equilibrium at all (seen at
+    lambda 1 on the coarse mesh), the output says so instead of "the dimple closes"."""
+    from shell_adhesion.solver.ring_adhesion import RingAdhesion, ring_holds
+
+    def no_equilibrium_above(d, ring, law_of, lo, hi, rel, settings, widen):
+        return (ring_holds(d, ring, law_of(lo), settings),
+                RingAdhesion(2 * lo, False, None, "no equilibrium found (descent: stub)"))
+    monkeypatch.setattr(thin_shell, "adhesion_limit", no_equilibrium_above)
+    args = ["snap", *SHELL, "--t", "0.4", "--mesh", "coarser", "--ring-adhesion", "0.3",
+            "--delta-max", "2"]
+    assert main(args) == 0
+    out = capsys.readouterr().out
+    assert "above it the switch found no equilibrium (no equilibrium found (descent: stub))" \
+        in out and "dimple closes" not in out
 
 
 def test_the_zero_range_limit_by_the_energy_method(capsys):

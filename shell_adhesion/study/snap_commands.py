@@ -241,7 +241,7 @@ def report(result) -> str:
                      f"gamma_c {ring['gamma_lo_J_m2']:.4g} to {ring['gamma_hi_J_m2']:.4g} J/m^2 "
                      f"(gamma/(C10 R) {ring['gamma_lo']:.4g} to {ring['gamma_hi']:.4g}) at "
                      f"delta {ring['delta_mm']:.4g} mm; below it the ring widens (to "
-                     f"{ring['ring_at_lo']} mm at the lower end), above it the dimple closes")
+                     f"{ring['ring_at_lo']} mm at the lower end), above it {ring['above']}")
     elif ring:
         lines.append(f"adhesion the ring survives: not bracketed ({ring['why']})")
     ok = out["energy_balance"] <= thin_shell.ENERGY_TOL

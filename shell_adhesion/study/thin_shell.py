@@ -291,13 +291,16 @@ class SnapResult:
         zero = self.input.ring_adhesion == ZERO_RANGE
         at_lo = (f"ring {self.mm(lo.ring.r_in):.4g}-{self.mm(lo.ring.r_out):.4g}" if zero
                  else lo.state.contact_in(self.input.R_mm))
+        at_hi = ("the dimple closes" if zero or hi.state is not None else
+                 f"the switch found no equilibrium ({hi.why})")
         return dict(tabor=None if zero else self.input.ring_adhesion,
                     law="zero range, energy method" if zero else "smoothed Dugdale",
                     bracketed=True,
                     gamma_lo_J_m2=self.gamma_J_m2(lo.gamma),
                     gamma_hi_J_m2=self.gamma_J_m2(hi.gamma), gamma_lo=lo.gamma,
                     gamma_hi=hi.gamma, delta_mm=self.mm(last.delta),
-                    ring=last.contact_in(self.input.R_mm), ring_at_lo=at_lo)
+                    ring=last.contact_in(self.input.R_mm), ring_at_lo=at_lo,
+                    above=at_hi)
 
     def to_dict(self) -> dict:
         s = self.path.states

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from shell_adhesion.cli import main
-from shell_adhesion.study import thin_shell
+from shell_adhesion.study import snap_commands, thin_shell
 
 SHELL = ["--R", "20", "--h", "20", "--C10", "0.3"]
 
@@ -120,7 +120,7 @@ def sealed():
 def snap(sealed, monkeypatch):
     """`main` on the sealed shell's flags, answered by the solved fixture (the command's
     input must be the fixture's)."""
-    def traced(inp, progress=None):
+    def traced(inp, progress=None, switched=None):
         assert inp == sealed.input
         return sealed
     monkeypatch.setattr(thin_shell, "trace_snap", traced)
@@ -169,7 +169,31 @@ def test_an_unvouched_energy_balance_exits_1(snap, capsys, monkeypatch):
     assert "failed: the energy balance misses by" in capsys.readouterr().err
 
 
-def test_the_adhesion_a_ring_survives_in_joules(capsys):
+class _Bar:
+    """A progress bar that records what it is told."""
+    made = []
+
+    def __init__(self, total, desc, unit):
+        self.desc, self.n = desc, 0
+        _Bar.made.append(self)
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        pass
+
+    def update(self, k=1):
+        self.n += k
+
+    def set_description(self, desc):
+        self.desc = desc
+
+    def close(self):
+        pass
+
+
+def test_the_adhesion_a_ring_survives_in_joules(capsys, monkeypatch):
     """--ring-adhesion: the bracket of gamma_c in J/m^2 at the ring the loading ends on
     (R 20 mm, t 0.4 mm, C10 0.3 MPa, pressed to 5 t; coarser mesh, lambda 0.3, 10 to 20
     s).  Measured 0.2562 to 0.2676 J/m^2 (4.27e-5 to 4.46e-5 C10 R; the benchmark's
@@ -185,6 +209,15 @@ def test_the_adhesion_a_ring_survives_in_joules(capsys):
     assert lo == pytest.approx(ring["gamma_lo"] * 0.3e6 * 0.02, rel=1e-12)
     assert ring["ring"].startswith("ring ") and ring["ring_at_lo"].startswith("ring ")
     assert ring["above"] == "the dimple closes"
+    # the bisection's progress: one count per switch, the last switch's gamma an end
+    monkeypatch.setattr(snap_commands, "bar", _Bar)
+    _Bar.made.clear()
+    assert main([*args, "--delta-max", "2", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["ring_adhesion"]["gamma_lo"] == ring["gamma_lo"]
+    switches = _Bar.made[-1]
+    assert len(_Bar.made) == 2 and 3 <= switches.n <= 20
+    last = float(switches.desc.split("gamma ")[1].split(" J/m^2")[0])
+    assert min(abs(last / lo - 1), abs(last / hi - 1)) < 1e-3, switches.desc
     assert main([*args, "--delta-max", "0.4"]) == 1
     captured = capsys.readouterr()
     assert "not a ring around a dimple: press further" in captured.err
@@ -196,7 +229,7 @@ def test_an_upper_end_without_equilibrium_is_not_called_a_closed_dimple(capsys, 
     lambda 1 on the coarse mesh), the output says so instead of "the dimple closes"."""
     from shell_adhesion.solver.ring_adhesion import RingAdhesion, ring_holds
 
-    def no_equilibrium_above(d, ring, law_of, lo, hi, rel, settings, widen):
+    def no_equilibrium_above(d, ring, law_of, lo, hi, rel, settings, widen, progress):
         return (ring_holds(d, ring, law_of(lo), settings),
                 RingAdhesion(2 * lo, False, None, "no equilibrium found (descent: stub)"))
     monkeypatch.setattr(thin_shell, "adhesion_limit", no_equilibrium_above)

@@ -155,7 +155,8 @@ def run(ns) -> int:
 
 
 def _traced(inp):
-    """trace_snap with a bar of the travel so far (mm of press, then of pull)."""
+    """trace_snap with a bar of the travel so far (mm of press, then of pull), then one
+    of the ring-adhesion bisection's switches (the last gamma and whether it held)."""
     unload = 0.0 if inp.unload_to_mm is None else inp.delta_max_mm - inp.unload_to_mm
     seen = dict(reach=0.0, low=inp.delta_max_mm, n=0.0, turned=False)
     with bar(round(inp.delta_max_mm + unload, 6), "snap", "mm") as b:
@@ -169,7 +170,20 @@ def _traced(inp):
             if n > seen["n"]:
                 b.update(n - seen["n"])
                 seen["n"] = n
-        return thin_shell.trace_snap(inp, progress)
+        switches = []
+
+        def switched(gamma_J_m2, holds):
+            if not switches:
+                b.close()
+                switches.append(bar(None, "ring adhesion", "switch"))
+            switches[0].set_description(f"ring adhesion (last: gamma {gamma_J_m2:.4g} J/m^2, "
+                                        + ("the ring held)" if holds else "it did not)"))
+            switches[0].update(1)
+        try:
+            return thin_shell.trace_snap(inp, progress, switched=switched)
+        finally:
+            for s in switches:
+                s.close()
 
 
 def report(result) -> str:

@@ -331,10 +331,11 @@ def _finite(v):
     return v
 
 
-def trace_snap(inp: SnapInput, progress=None) -> SnapResult:
+def trace_snap(inp: SnapInput, progress=None, switched=None) -> SnapResult:
     """Press the shell of `inp` to delta_max (arc length through its snap), then, with
     unload_to, unload (pull) by the same continuation; `progress(state)` after each
-    converged state (solver.snap.trace_loading)."""
+    converged state (solver.snap.trace_loading); with ring_adhesion at a Tabor parameter,
+    `switched(gamma_J_m2, holds)` after each switch of the bisection."""
     T, H = inp.t_mm / inp.R_mm, inp.h_mm / inp.R_mm
     delta_max = inp.delta_max_mm / inp.R_mm
     d = discretise(cap_mesh(loading_cap(T, H), mesh_spec(inp.mesh, ring_arc(delta_max))))
@@ -370,8 +371,12 @@ def trace_snap(inp: SnapInput, progress=None) -> SnapResult:
             limit = zip_limit(RingLattice(d, last), guess / 2, 1.3 * guess, RING_REL / 5,
                               widen=1.3)
         else:
+            def shown(result):
+                if switched is not None:
+                    J = result.gamma / gamma_hat(1.0, inp.C10_MPa, inp.R_mm)
+                    switched(J, result.holds)
             limit = adhesion_limit(d, last, law_of, guess / 2, guess * 2, RING_REL,
-                                   settings=settings, widen=4.0)
+                                   settings=settings, widen=4.0, progress=shown)
     except (ValueError, ConvergenceError) as err:
         return SnapResult(inp, path, int(d.ndof), None, str(err))
     return SnapResult(inp, path, int(d.ndof), limit)

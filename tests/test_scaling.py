@@ -8,7 +8,7 @@ from shell_adhesion.solver.forms import discretise
 from shell_adhesion.solver.geometry import Cap
 from shell_adhesion.solver.mesh import cap_mesh, mesh_spec, scaled
 from shell_adhesion.solver.path import load
-from shell_adhesion.solver.scaling import force_N, gamma_hat
+from shell_adhesion.solver.scaling import force_N, gamma_hat, gamma_J_m2
 
 
 def _events(L, C10, interface="no_slip"):
@@ -47,4 +47,5 @@ def test_lengths_doubled_scale_P_by_four(reference):
 def test_dimensional_edge():
     """gamma / (C10 R) and P = P_hat C10 R^2 with the tool's units (J/m^2, MPa, mm, N)."""
     assert gamma_hat(30.0, 0.3, 20.0) == pytest.approx(0.005)
+    assert gamma_J_m2(0.005, 0.3, 20.0) == pytest.approx(30.0)
     assert force_N(0.1, 0.3, 20.0) == pytest.approx(12.0)

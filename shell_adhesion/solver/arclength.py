@@ -483,7 +483,7 @@ def _held_solve(cn, c, x, delta, stuck, interface, free_slip, fixed, max_updates
         except ConvergenceError:
             if not descend:
                 raise
-            x, full = _descend(cn, c, x, rise=ESCAPE_RISE)
+            x, full = _descend(cn, c, x, early=True)
             x, _, K, r, (n, chord) = cn.correct(c, x, delta, fixed, 0.0)
             full += n
         its += full + chord
@@ -498,7 +498,7 @@ def _held_solve(cn, c, x, delta, stuck, interface, free_slip, fixed, max_updates
     raise ConvergenceError(f"the held nodes still changed after {max_updates} solves")
 
 
-def _descend(cn, c, x, max_iter=600, mu0=1e-2, rise=np.inf):
+def _descend(cn, c, x, max_iter=600, mu0=1e-2, early=False):
     """Pseudo-transient continuation at fixed delta, held nodes and anchors: steps
     (K + mu D) dx = -r on the free dofs, D the mean of |diag K| added to the displacement
     dofs' diagonal only (an overdamped flow of the displacements, the incompressibility
@@ -509,8 +509,8 @@ def _descend(cn, c, x, max_iter=600, mu0=1e-2, rise=np.inf):
     delta) that the corrector alone cannot, to the equilibrium the damped flow settles
     in.  A flow that has not settled after max_iter steps creeps away from an unstable
     state (the residual barely changes, and mu with it): up to ESCAPE_STEPS more steps
-    (escaping sooner where `rise` is finite: once the residual has risen to `rise` times
-    the least it reached, or has not halved (STALL) in the last STALL_STEPS steps)
+    (`early`: sooner, once the residual has risen to ESCAPE_RISE times the least it
+    reached, or has not halved (STALL) over the last STALL_STEPS steps)
     then lower mu by at least ESCAPE each, every one of them required to lower the
     energy (`forms.lagrangian` plus the interface's; mu raised tenfold where it does
     not).  A sealed gas (the pocket's: `on_gas_law` of d.cavity) stays on its law, its
@@ -528,17 +528,17 @@ def _descend(cn, c, x, max_iter=600, mu0=1e-2, rise=np.inf):
     on_gas_law = getattr(d.cavity, "on_gas_law", lambda y: y)
     guarded = hasattr(d.cavity, "on_gas_law") and d.cavity.sealed     # DESCENT_GROWTH
     energy = lambda v: lagrangian(d, v) + cn.iface.energy(v, cn.anchors)     # noqa: E731
-    mu, res_before, E, least, escape_at = mu0, None, None, np.inf, max_iter
-    history = []
+    mu, res_before, E, escape_at = mu0, None, None, max_iter
+    history = []                                        # the residual at each step
     for it in range(max_iter + ESCAPE_STEPS):
         if it:
             K, r = cn.linearise(x)
         res = float(np.linalg.norm(r[c.free]))
-        least = min(least, res)
         history.append(res)
-        stalled = it >= STALL_STEPS and res > STALL * history[it - STALL_STEPS]
-        if escape_at == max_iter and (res > rise * least or (rise < np.inf and stalled)):
-            escape_at = it                  # creeping away from an unstable state
+        if early and escape_at == max_iter and (
+                res > ESCAPE_RISE * min(history)            # creeping off an unstable state
+                or it >= STALL_STEPS and res > STALL * history[it - STALL_STEPS]):  # stalled
+            escape_at = it
         escaping = it >= escape_at
         if res_before is not None:
             lower = mu * min(res / res_before, ESCAPE) if escaping else mu * res / res_before

@@ -25,6 +25,11 @@ def gamma_hat(gamma_J_m2, C10_MPa, R_mm):
     return gamma_J_m2 * 1e-3 / (C10_MPa * R_mm)
 
 
+def gamma_J_m2(g_hat, C10_MPa, R_mm):
+    """gamma [J/m^2] of gamma / (C10 R) (the inverse of gamma_hat)."""
+    return g_hat * C10_MPa * R_mm * 1e3
+
+
 def force_N(P_hat, C10_MPa, R_mm):
     return P_hat * C10_MPa * R_mm ** 2
 

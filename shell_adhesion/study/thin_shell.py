@@ -26,7 +26,7 @@ from shell_adhesion.solver.grip import grip
 from shell_adhesion.solver.geometry import DEPTH_SHARE, check_delta_max, domain_delta_max
 from shell_adhesion.solver.mesh import cap_mesh, mesh_spec
 from shell_adhesion.solver.scaling import (check_C10, check_finite, check_R, force_N,
-                                           gamma_hat)
+                                           gamma_J_m2)
 from shell_adhesion.solver import maugis_dugdale as md
 from shell_adhesion.solver.cohesive import CohesiveLaw
 from shell_adhesion.solver.ring_adhesion import LIMIT_SCALE, adhesion_limit, around_dimple
@@ -275,8 +275,8 @@ class SnapResult:
                           for r in self.ramp])
 
     def gamma_J_m2(self, g):
-        """gamma / (C10 R) in J/m^2 (the inverse of scaling.gamma_hat)."""
-        return g / gamma_hat(1.0, self.input.C10_MPa, self.input.R_mm)
+        """gamma / (C10 R) in J/m^2."""
+        return gamma_J_m2(g, self.input.C10_MPa, self.input.R_mm)
 
     def ring_adhesion(self):
         """With ring_adhesion asked: the bracket of gamma_c (J/m^2 and / (C10 R)), the ring
@@ -373,8 +373,7 @@ def trace_snap(inp: SnapInput, progress=None, switched=None) -> SnapResult:
         else:
             def shown(result):
                 if switched is not None:
-                    J = result.gamma / gamma_hat(1.0, inp.C10_MPa, inp.R_mm)
-                    switched(J, result.holds)
+                    switched(gamma_J_m2(result.gamma, inp.C10_MPa, inp.R_mm), result.holds)
             limit = adhesion_limit(d, last, law_of, guess / 2, guess * 2, RING_REL,
                                    settings=settings, widen=4.0, progress=shown)
     except (ValueError, ConvergenceError) as err:

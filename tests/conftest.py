@@ -1,4 +1,5 @@
 """Shared, cached solutions (the real solver; coarse meshes unless a test needs more)."""
+import contextlib
 import functools
 import multiprocessing
 import os
@@ -68,13 +69,40 @@ error_bars: false
 
 @pytest.fixture(scope="session")
 def small_study(tmp_path_factory):
-    """Path of the small study's results netCDF (computed once per session)."""
+    """Path of the small study's results netCDF, computed once per test session: under
+    pytest-xdist the workers share one run (the first to take the lock computes it, the
+    others read its cube), where each worker used to compute its own."""
     from shell_adhesion.study.run import execute
-    d = tmp_path_factory.mktemp("small")
-    (d / "small.yaml").write_text(SMALL_STUDY)
-    outcome = execute(d / "small.yaml", d / "results", catalogue=d / "cat", progress=False)
-    assert outcome.exit_code == 0, outcome.failed
-    return outcome.output
+    base = tmp_path_factory.getbasetemp()
+    shared = base.parent if os.environ.get("PYTEST_XDIST_WORKER") else base
+    d = shared / "small-study"
+    d.mkdir(exist_ok=True)
+    with _exclusive(d / ".lock"):
+        output = d / "results" / "small.nc"
+        if not output.exists():
+            (d / "small.yaml").write_text(SMALL_STUDY)
+            outcome = execute(d / "small.yaml", d / "results", catalogue=d / "cat",
+                              progress=False)
+            assert outcome.exit_code == 0, outcome.failed
+            assert outcome.output == output, outcome.output
+    return output
+
+
+@contextlib.contextmanager
+def _exclusive(path):
+    """Hold an exclusive lock on the file `path` (POSIX; elsewhere no lock: each worker of
+    a parallel run then computes on its own)."""
+    try:
+        import fcntl
+    except ImportError:
+        yield
+        return
+    with open(path, "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        try:
+            yield
+        finally:
+            fcntl.flock(lock, fcntl.LOCK_UN)
 
 
 # names through which the finite-element solver can be entered (as defined and as imported)

@@ -6,6 +6,8 @@ value: the coarse mesh in every run (a few seconds each), the default mesh `slow
 frictionless interface and the Mooney-Rivlin solid (JKR with E* = 8 (C10 + C01)) get the
 same independent reference as the paper's no-slip neo-Hookean shell.
 """
+import functools
+
 import pytest
 
 from shell_adhesion.solver import solve_paths
@@ -29,7 +31,10 @@ STATED = {
 MATERIALS = {"neo_hooke": NEO_HOOKE, "mooney_rivlin": MOONEY_RIVLIN}
 
 
+@functools.lru_cache(maxsize=None)
 def jkr_pull_off(mesh, interface, material):
+    """The solid hemisphere's pull-off at GAMMA (solved once per process: two tests read
+    the coarse neo-Hookean one)."""
     g = gamma_hat(GAMMA, C10, R_MM)
     ps, _, _ = solve_paths(1.0, 1.0, interface, mesh, delta_max=0.011, gamma_max=1.25 * g,
                            material=material)

@@ -18,6 +18,19 @@ from shell_adhesion.study import snap_commands, thin_shell
 SHELL = ["--R", "20", "--h", "20", "--C10", "0.3"]
 
 
+@pytest.fixture
+def solve_once(monkeypatch):
+    """`thin_shell.trace_snap` answering an input it has solved from that solve: a test
+    that reads one run as JSON and then as text solves it once."""
+    solved, trace = {}, thin_shell.trace_snap
+
+    def traced(inp, progress=None, switched=None):
+        if inp not in solved:
+            solved[inp] = trace(inp, progress, switched)
+        return solved[inp]
+    monkeypatch.setattr(thin_shell, "trace_snap", traced)
+
+
 @pytest.mark.parametrize("args, says", [
     (["--t", "0.05"], "--t: 0.05 mm (t/R: 0.0025 is outside"),
     (["--t", "0.4", "--delta-max", "30"], "--delta-max: 30 mm"),
@@ -56,7 +69,7 @@ def test_bad_input_is_one_line_and_exit_2(args, says, capsys, tmp_path, monkeypa
     assert list(tmp_path.iterdir()) == []
 
 
-def test_a_sharp_contact_jumps_where_it_loses_stability_in_newtons(capsys):
+def test_a_sharp_contact_jumps_where_it_loses_stability_in_newtons(capsys, solve_once):
     """`--contact sharp` (onset 3e-6 R): the loading of t/R 0.02 jumps at 6.33 t (2.53 mm
     for t 0.4 mm), from two rings to one around a dimple, and says how the jump was found;
     P in newtons is the solver's C10 R^2 times 0.3 MPa x 400 mm^2 (solver: test_snap.py's
@@ -239,7 +252,7 @@ def test_an_upper_end_without_equilibrium_is_not_called_a_closed_dimple(capsys, 
         in out and "dimple closes" not in out
 
 
-def test_the_zero_range_limit_by_the_energy_method(capsys):
+def test_the_zero_range_limit_by_the_energy_method(capsys, solve_once):
     """--ring-adhesion zero: the energy method at the ring's two edges (solver.ring_energy)
     on the same ring (coarser mesh, pressed to 5 t; about 5 s after the loading).
     Measured 0.2434 to 0.2453 J/m^2 (4.057e-5 to 4.088e-5 C10 R; tests/test_ring_energy.py
@@ -258,7 +271,7 @@ def test_the_zero_range_limit_by_the_energy_method(capsys):
         capsys.readouterr().out
 
 
-def test_the_gripper_order_holds_a_pull_in_newtons(capsys, tmp_path):
+def test_the_gripper_order_holds_a_pull_in_newtons(capsys, solve_once, tmp_path):
     """`--cavity-kPa`: pressed, sealed at the turn, the cavity at -0.48 kPa (half of p_cl =
     8 C10 (t/R)^2 = 0.96 kPa), pulled: the solver's P* -4.361e-4 C10 R^2
     (test_depressurised_pocket.py) is -0.0523 N for C10 R^2 = 120 N (coarser mesh, 5 s)."""

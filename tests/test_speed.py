@@ -40,11 +40,9 @@ def same_paths(ps, ref):
                                                          (0.02, 1.0, 0.03, 0.006)],
                          ids=["base", "thin"])
 def test_fast_solver_changes_no_result(t, h, delta_max, gamma_max):
-    runs = {}
-    for name, settings in (("fast", FAST), ("slow", SLOW)):
-        runs[name] = solve_paths(t, h, "no_slip", "coarse", delta_max, gamma_max, settings,
-                                 uniform=even_arc(t, h, gamma_max))[0]
-    fast, slow = runs["fast"], runs["slow"]
+    fast = paths(t, h, delta_max, gamma_max)            # FAST: the default settings
+    slow = solve_paths(t, h, "no_slip", "coarse", delta_max, gamma_max, SLOW,
+                       uniform=even_arc(t, h, gamma_max))[0]
     same_paths(fast, slow)
     assert fast.stats["timing"]["linear_solver"] == linear.backend(True)
     assert slow.stats["timing"]["linear_solver"] == "superlu"
@@ -62,7 +60,10 @@ def even_arc(t, h, gamma_max):
     return initial_fit(Cap(t, h), Request.serving(gamma_max)).uniform
 
 
+@functools.lru_cache(maxsize=None)
 def paths(t, h, delta_max, gamma_max, switch_off=None):
+    """The shell's path set with every speed-up on, or with `switch_off` off (cached: the
+    tests compare several switches with one run of them all on; read only)."""
     settings = Settings() if switch_off is None else Settings(**{switch_off: False})
     return solve_paths(t, h, "no_slip", "coarse", delta_max, gamma_max, settings,
                        uniform=even_arc(t, h, gamma_max))[0]

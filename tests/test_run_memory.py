@@ -12,7 +12,7 @@ from shell_adhesion.solver.path import State
 from shell_adhesion.study import run as run_module
 
 STUDY = dict(name="memory", R_mm=20, mesh="coarse", error_bars=False,
-             base=dict(C10_MPa=1.0, t_over_R=0.1, h_over_R=1.0, gamma_J_m2=600))
+             base=dict(C10_MPa=1.0, t_over_R=0.1, h_over_R=1.0, gamma_J_m2=300))
 
 
 def _states_with_fields():
@@ -36,7 +36,7 @@ def test_the_driver_drops_the_start_states_it_sent(tmp_path, monkeypatch):
                                  progress=False, workers=2)
     assert outcome.exit_code == 0
     paths = outcome.relaxations_computed
-    assert paths >= 100                 # enough paths to tell (108 measured)
+    assert paths >= 60                  # enough paths to tell (83 measured)
     # the logs of the client's comm and the two workers' hold a few messages each (8);
     # with dask's default of 1000 the driver held one start state per path
     assert held["states"] <= 30, (held["states"], paths)

@@ -32,7 +32,7 @@ from shell_adhesion.solver import pocket as pk
 from shell_adhesion.solver.cohesive import CohesiveLaw
 from shell_adhesion.solver.error_bars import assumed_order, error_bar
 from shell_adhesion.solver.forms import discretise
-from shell_adhesion.solver.grip import grip
+from shell_adhesion.solver.grip import grip, press
 from shell_adhesion.solver.mesh import cap_mesh, mesh_spec
 from shell_adhesion.solver.ring_adhesion import LIMIT_SCALE
 from shell_adhesion.solver.snap import loading_cap, ring_arc
@@ -108,9 +108,14 @@ def main(argv=None):
         gamma = a.gamma_hat or a.gamma_share * LIMIT_SCALE * T * (dm * T) ** 2
         law = CohesiveLaw(md.sigma0_of(a.tabor, gamma, 1.0, K_OVER_C10), gamma)
 
+        pressed = {}        # mesh: its press, which serves every grip of this shell
+
         def solved(mesh, f, pocket="sealed"):
-            d = discretise(cap_mesh(cap, mesh_spec(mesh, ring_arc(dm * T))))
-            return grip(d, dm * T, -f * 8 * T * T, p_atm, 1.0, pocket=pocket, adhesion=law)
+            if mesh not in pressed:
+                d = discretise(cap_mesh(cap, mesh_spec(mesh, ring_arc(dm * T))))
+                pressed[mesh] = press(d, dm * T, p_atm)
+            return grip(pressed[mesh].shell, dm * T, -f * 8 * T * T, p_atm, 1.0, pocket=pocket,
+                        adhesion=law, pressed=pressed[mesh])
 
         def answer(f, pocket, mesh, coarser):
             t0 = time.perf_counter()

@@ -87,15 +87,25 @@ def cli(*args):
     return py("-m", "shell_adhesion", *args)
 
 
+CALCULIX_TRIES = 3      # ccx 2.20 on every core is not deterministic: its increments
+#                         vary (77 to 81 measured) and about one run in three diverges
+#                         (NaN forces) before 5 mm; on one thread it gives 83 every time
+
+
 def calculix():
-    """(ccx wall s, P(5 mm) N, ccx CPU s) or None where ccx is not installed."""
+    """(ccx wall s, P(5 mm) N, ccx CPU s) or None where ccx is not installed; a run that
+    does not reach 5 mm is repeated (at most CALCULIX_TRIES runs, then RuntimeError)."""
     if shutil.which("ccx") is None:
         return None
-    wall, _, code, out = timed(py("benchmarks/calculix_loading.py"))
-    m = re.search(r"increments, ([\d.]+) s \(([\d.]+) s CPU\).*P\(5 mm\) = ([-\d.]+) N", out)
-    if code != 0 or not m:
-        raise RuntimeError("calculix_loading failed: " + out.strip().splitlines()[-1])
-    return float(m.group(1)), float(m.group(3)), float(m.group(2))
+    for attempt in range(CALCULIX_TRIES):
+        wall, _, code, out = timed(py("benchmarks/calculix_loading.py"))
+        m = re.search(r"increments, ([\d.]+) s \(([\d.]+) s CPU\).*P\(5 mm\) = ([-\d.]+) N",
+                      out)
+        if code == 0 and m:
+            return float(m.group(1)), float(m.group(3)), float(m.group(2))
+        print(f"  CalculiX run {attempt + 1} of {CALCULIX_TRIES} failed: "
+              + out.strip().splitlines()[-1][:160], flush=True)
+    raise RuntimeError(f"calculix_loading failed {CALCULIX_TRIES} times")
 
 
 def felupe():

@@ -29,7 +29,7 @@ from shell_adhesion.solver import pocket as pk
 from shell_adhesion.solver.cohesive import CohesiveLaw
 from shell_adhesion.solver.error_bars import assumed_order, error_bar
 from shell_adhesion.solver.forms import discretise
-from shell_adhesion.solver.grip import grip
+from shell_adhesion.solver.grip import grip, press
 from shell_adhesion.solver.mesh import cap_mesh, mesh_spec
 from shell_adhesion.solver.snap import loading_cap, ring_arc
 from shell_adhesion.study.cohesive_case import K_OVER_C10
@@ -78,9 +78,14 @@ def main(argv=None):
              if a.coarser else ""))
     print("| --- " * (13 if a.coarser else 10) + "|")
 
+    pressed = {}            # mesh: its press, which serves every grip below
+
     def solved(mesh, f, pocket="sealed"):
-        d = discretise(cap_mesh(cap, mesh_spec(mesh, ring_arc(a.delta_max * T))))
-        return grip(d, a.delta_max * T, -f * p_cl, p_atm, a.n, pocket=pocket, adhesion=law)
+        if mesh not in pressed:
+            d = discretise(cap_mesh(cap, mesh_spec(mesh, ring_arc(a.delta_max * T))))
+            pressed[mesh] = press(d, a.delta_max * T, p_atm)
+        return grip(pressed[mesh].shell, a.delta_max * T, -f * p_cl, p_atm, a.n, pocket=pocket,
+                    adhesion=law, pressed=pressed[mesh])
 
     def answered(g):
         return g.pull is not None and (not g.ended_by or g.bound)

@@ -10,6 +10,7 @@ compresses as the rim rises and opens with P still compressive (no tensile force
 f 0.2 and 0.25 the rim load of the pressed shell falls to zero along the dimpled branch
 (at 4.19 t and 2.87 t, the same on both meshes within 0.01 t): the suction holds the
 dimple on its own and the shell lifts off the plane.  Each path takes about 3 s."""
+import functools
 import math
 
 import numpy as np
@@ -23,7 +24,7 @@ from shell_adhesion.solver import pocket as pk
 from shell_adhesion.solver.cohesive import CohesiveLaw, Interface
 from shell_adhesion.solver.contact import constraints
 from shell_adhesion.solver.forms import discretise, potential_energy, residual, tangent
-from shell_adhesion.solver.grip import grip
+from shell_adhesion.solver.grip import grip, press
 from shell_adhesion.solver.mesh import cap_mesh, mesh_spec
 from shell_adhesion.study.cohesive_case import K_OVER_C10
 from shell_adhesion.solver.snap import (LIFT_SHARE, SnapSettings, adhesive_pull_off,
@@ -36,7 +37,19 @@ ENERGY = 1e-4       # |work of P - dU - dPi - dE_gas| / max |dU| along the path
 
 
 def _d(mesh="coarser"):
+    """The shell on `mesh` (one discretisation per mesh: its press serves every grip)."""
+    return _discretised(mesh)
+
+
+@functools.lru_cache(maxsize=None)
+def _discretised(mesh):
     return discretise(cap_mesh(loading_cap(T, 1.0), mesh_spec(mesh, ring_arc(DELTA_MAX))))
+
+
+@functools.lru_cache(maxsize=None)
+def _pressed(mesh="coarser"):
+    """The press to DELTA_MAX on `mesh` (solver.grip.press), once for the grips below."""
+    return press(_d(mesh), DELTA_MAX, P_ATM)
 
 
 def _path(fraction, pocket=pk.Pocket("sealed", P_ATM, 1.0)):
@@ -162,7 +175,7 @@ def test_pressed_past_its_lift_off_the_dimple_collapses_into_the_cavity():
 
 # ------------------------------------------------ the working order: press, seal, suck, pull
 def _grip(fraction, mesh="coarser"):
-    return grip(_d(mesh), DELTA_MAX, -fraction * P_CL, P_ATM)
+    return grip(_d(mesh), DELTA_MAX, -fraction * P_CL, P_ATM, pressed=_pressed(mesh))
 
 
 def test_pressed_sealed_then_depressurised_the_pocket_holds_a_pull():
@@ -196,11 +209,18 @@ def test_pressed_sealed_then_depressurised_the_pocket_holds_a_pull():
 
 
 def test_without_suction_the_sealed_pocket_gives_no_pull():
-    g = _grip(0.0)
+    g = grip(_d(), DELTA_MAX, 0.0, P_ATM)           # pressing itself
     assert g.ended_by == "" and g.ramp == ()
     assert g.pull_off() == (0.0, None)
     # sealed at 5 t, the ring opens at 4.65 t (pressed to 5.04 t, test_pocket's: 4.69 t)
     assert g.pull.states[-1].delta / T == pytest.approx(4.65, abs=0.01)
+    # the press the other grips are handed (grip(pressed=)) is the one a grip traces
+    reused = _pressed().path.states
+    assert [s.delta for s in g.press.states] == [s.delta for s in reused]
+    np.testing.assert_array_equal(g.press.states[-1].x, reused[-1].x)
+    for d, delta_max in ((_d("coarse"), DELTA_MAX), (_d(), 0.9 * DELTA_MAX)):
+        with pytest.raises(ValueError, match="^pressed: not the press of this shell"):
+            grip(d, delta_max, 0.0, P_ATM, pressed=_pressed())
 
 
 @pytest.mark.slow
@@ -216,12 +236,13 @@ def test_vented_the_suction_lets_the_ring_go_and_adiabatic_gas_holds_as_isotherm
     # vented, the same ramp draws the dimple up off the plane: P falls towards 0 (the
     # ring lets go near 0.18 p_cl) and is never tensile; the sealed gas at n = 1.4 holds
     # the pull as at n = 1 (it expands by less than 1 %): P* -4.414e-4 against -4.417e-4
-    vented = grip(_d(), DELTA_MAX, -0.5 * P_CL, P_ATM, pocket="vented")
+    vented = grip(_d(), DELTA_MAX, -0.5 * P_CL, P_ATM, pocket="vented",
+                  pressed=_pressed())
     assert vented.pull is None and vented.ended_by.startswith("the ramp stopped at")
     P = [s.P for s in vented.ramp]
     assert min(P) > 0 and P[-1] < 0.01 * vented.press.states[-1].P
     assert vented.ramp[-1].p_c == pytest.approx(-0.183 * P_CL, abs=0.01 * P_CL)
-    adiabatic = grip(_d(), DELTA_MAX, -0.5 * P_CL, P_ATM, n=1.4)
+    adiabatic = grip(_d(), DELTA_MAX, -0.5 * P_CL, P_ATM, n=1.4, pressed=_pressed())
     assert adiabatic.ended_by == ""
     assert adiabatic.pull_off()[0] == pytest.approx(-4.360e-4, abs=0.005e-4)
     V0 = adiabatic.press.states[-1].V
@@ -255,7 +276,8 @@ def test_with_adhesion_the_depressurised_sealed_pocket_holds_47_times_the_open_s
     # Tabor 0.3): pressed to 5 t, sealed, the cavity at -p_cl, the law switched on where
     # the pull starts: the ring holds until the pocket opens at 3.40 t, P* -1.5236e-3
     # C10 R^2, 46.9 times the open shell's -3.2517e-5 (`slow` below); coarser -1.5183e-3
-    g = grip(_d("coarse"), DELTA_MAX, -P_CL, P_ATM, adhesion=_law(1e-5))
+    g = grip(_d("coarse"), DELTA_MAX, -P_CL, P_ATM, adhesion=_law(1e-5),
+             pressed=_pressed("coarse"))
     assert g.ended_by == "" and not g.bound
     assert g.pull.ended_by.startswith("pocket opened")
     Pstar, at = g.pull_off()
@@ -271,7 +293,8 @@ def test_a_jump_from_a_fold_of_delta_that_opens_the_sealed_pocket_ends_the_pull(
     # (the gas kept on its law) loses the ring around the pocket: the pull ends "pocket
     # opened", P* the least P up to the fold, exact (before the descent kept the gas's
     # unknown, this pull stopped at the fold and P* was only a bound)
-    g = grip(_d("coarser"), DELTA_MAX, 0.0, P_ATM, adhesion=_law(2e-5))
+    g = grip(_d("coarser"), DELTA_MAX, 0.0, P_ATM, adhesion=_law(2e-5),
+             pressed=_pressed("coarser"))
     assert g.ended_by == "" and not g.bound
     assert g.pull.ended_by.startswith("pocket opened: in the jump from delta")
     assert "(the unloading passed a fold of delta)" in g.pull.ended_by
@@ -291,7 +314,8 @@ def test_above_the_vented_rings_limit_the_open_shell_zips_flat_as_from_its_first
     # history does not matter: the same shell traced with the law on from its first touch
     # (`arclength.trace`, never dimpled) gives the same P* (measured -7.5224e-4 and
     # -7.5244e-4 C10 R^2, 2.7e-4 apart; each the vertex through its sampled least P)
-    g = grip(_d("coarser"), DELTA_MAX, 0.0, P_ATM, pocket="vented", adhesion=_law(1.68e-4))
+    g = grip(_d("coarser"), DELTA_MAX, 0.0, P_ATM, pocket="vented", adhesion=_law(1.68e-4),
+             pressed=_pressed("coarser"))
     assert g.ended_by == "" and not g.bound
     P_switched, at = g.pull_off()
     assert len(at.radii) == 1 and at.radii[0][0] == 0.0        # a disc, no ring
@@ -335,13 +359,15 @@ def test_the_open_shell_and_the_sealed_pull_at_2e_5():
     # without suction at 2e-5 the pocket opens in the jump from a fold at 3.72 t:
     # -5.628e-4, 10.5 times the open shell, within the ideal suction force
     for gamma in (1e-5, 2e-5):
-        g = grip(_d("coarse"), DELTA_MAX, 0.0, P_ATM, pocket="vented", adhesion=_law(gamma))
+        g = grip(_d("coarse"), DELTA_MAX, 0.0, P_ATM, pocket="vented", adhesion=_law(gamma),
+                 pressed=_pressed("coarse"))
         plain = trace_loading(_d("coarse"), DELTA_MAX, SnapSettings(), unload_to=-DELTA_MAX,
                               adhesion=_law(gamma))
         assert g.ended_by == "" and plain.ended_by == ""
         assert g.pull_off()[0] == pytest.approx(adhesive_pull_off(plain)[0], rel=0.003)
     P_open = g.pull_off()[0]
-    g = grip(_d("coarse"), DELTA_MAX, 0.0, P_ATM, adhesion=_law(2e-5))
+    g = grip(_d("coarse"), DELTA_MAX, 0.0, P_ATM, adhesion=_law(2e-5),
+             pressed=_pressed("coarse"))
     assert g.ended_by == "" and g.pull.ended_by.startswith("pocket opened: in the jump")
     assert g.pull_off()[0] == pytest.approx(-5.628e-4, abs=0.005e-4)
     assert 10 < g.pull_off()[0] / P_open and -g.pull_off()[0] <= g.ideal_suction(P_ATM)

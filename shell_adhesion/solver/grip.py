@@ -97,52 +97,97 @@ class Grip:
         return p_atm * math.pi * max(radii, default=math.nan) ** 2
 
 
+@dataclass(frozen=True, eq=False)
+class Pressed:
+    """The press of `grip`, which depends on none of the suction, the pocket, the gas,
+    the pull or the adhesion: one press serves a sweep over them (`grip(pressed=)`).
+    `shell` the discretisation pressed (no cavity bound), `d` it bound to the cavity at
+    ambient pressure and the pocket vented, `path` the press (its last state exactly at
+    delta_max where it got there), `ended_by` "" or why a grip ends after the press."""
+
+    shell: object
+    d: object
+    delta_max: float
+    p_atm: float
+    settings: SnapSettings
+    path: SnapPath
+    ended_by: str
+
+    def serves(self, d, delta_max: float, p_atm: float, settings: SnapSettings) -> bool:
+        """True if this is the press of `d` (the same object) to delta_max at p_atm."""
+        return (self.shell is d and self.delta_max == delta_max and self.p_atm == p_atm
+                and self.settings == settings)
+
+
+def press(d, delta_max: float, p_atm: float, settings: SnapSettings = SnapSettings(),
+          progress=None) -> Pressed:
+    """Press the shell `d` (a forms.Discretisation, no cavity bound; its cavity at ambient
+    pressure p_atm / C10, the pocket vented) frictionless to delta_max / R by arc length
+    and land on delta_max exactly; `progress(state)` after each state.  Its contact there
+    must be a ring around an apex lifted by SnapSettings.seal_lift t, else `ended_by`
+    says "no ring around a dimple"."""
+    shell = d
+    d, x0, _ = bind_depressurised(d, Pocket("vented"), Cavity("pressure", p=0.0, p_atm=p_atm))
+    path = trace_loading(d, delta_max, replace(settings, seal_at_turn=False), progress, x0=x0)
+
+    def pressed(ended_by=""):
+        return Pressed(shell, d, delta_max, p_atm, settings, path, ended_by)
+    if path.ended_by:
+        return pressed(f"the press stopped: {path.ended_by}")
+    arc = ArcSettings(tol=settings.tol, max_iter=settings.max_iter)
+    try:
+        path = _landed(path, d, delta_max, PenaltyContact(settings.stiffness, settings.onset),
+                       arc)
+    except ConvergenceError as err:
+        return pressed(f"the press found no state at delta_max: {err}")
+    last, t_over_R = path.states[-1], shell.capmesh.cap.t
+    if not (last.ring and last.apex_gap > settings.seal_lift * t_over_R):
+        return pressed(f"no ring around a dimple to seal at delta_max (contact {last.contact}, "
+                       f"apex {last.apex_gap / t_over_R:.3g} t above the plane; R = 1): press "
+                       "further")
+    return pressed()
+
+
 def grip(d, delta_max: float, p_c: float, p_atm: float, n: float = 1.0,
          unload_to: float = None, settings: SnapSettings = SnapSettings(),
          ramp_steps: int = 4, max_steps: int = 100, progress=None,
-         pocket: str = "sealed", adhesion=None) -> Grip:
+         pocket: str = "sealed", adhesion=None, pressed: Pressed = None) -> Grip:
     """Press the shell `d` (a forms.Discretisation, no cavity bound) to delta_max / R
-    (where its contact must be a ring around an apex lifted by SnapSettings.seal_lift t,
-    else the Grip ends there: "no ring around a dimple"), seal the pocket (`pocket`
-    "vented": leave it open, the comparison), lower the cavity's gauge pressure to p_c /
-    C10 (<= 0) at fixed delta
-    in about `ramp_steps` steps (a step that fails is halved; at most `max_steps` tries),
-    and pull to unload_to / R (default -delta_max).  Raises InputError for p_c > 0 or
-    p_c + p_atm < 0; a stage that fails ends the Grip early with `ended_by` saying where.
-    `progress(state)` after each state of the press and of the pull.  `adhesion` (a
-    cohesive.CohesiveLaw): switched on at fixed delta where the pull starts (after the
-    ramp), the pull then by the law (snap.trace_loading's adhesion)."""
+    (`press`; where its contact is not a ring around a dimple the Grip ends there), seal
+    the pocket (`pocket` "vented": leave it open, the comparison), lower the cavity's
+    gauge pressure to p_c / C10 (<= 0) at fixed delta in about `ramp_steps` steps (a step
+    that fails is halved; at most `max_steps` tries), and pull to unload_to / R (default
+    -delta_max).  Raises InputError for p_c > 0 or p_c + p_atm < 0; a stage that fails
+    ends the Grip early with `ended_by` saying where.  `progress(state)` after each state
+    of the press and of the pull.  `adhesion` (a cohesive.CohesiveLaw): switched on at
+    fixed delta where the pull starts (after the ramp), the pull then by the law
+    (snap.trace_loading's adhesion).  `pressed`: `press(d, delta_max, p_atm, settings)`
+    done before (a sweep over p_c, the pocket, n or the adhesion presses once; ValueError
+    if it is another shell's or press's)."""
     if not (math.isfinite(p_c) and -p_atm <= p_c <= 0):
         raise InputError(f"p_c: {p_c!r} must be a gauge pressure in [-p_atm, 0] "
                          f"(p_atm = {p_atm:g} C10)")
     if pocket not in MODES:
         raise InputError(f"pocket: {pocket!r} must be one of sealed, vented")
     unload_to = -delta_max if unload_to is None else unload_to
-    d, x0, _ = bind_depressurised(d, Pocket("vented"), Cavity("pressure", p=0.0, p_atm=p_atm))
-    press = trace_loading(d, delta_max, replace(settings, seal_at_turn=False), progress,
-                          x0=x0)
-    if press.ended_by:
-        return Grip(press, (), None, f"the press stopped: {press.ended_by}")
+    if pressed is None:
+        pressed = press(d, delta_max, p_atm, settings, progress)
+    elif not pressed.serves(d, delta_max, p_atm, settings):
+        raise ValueError("pressed: not the press of this shell to this delta_max at this "
+                         "p_atm with these settings (press(d, delta_max, p_atm, settings))")
+    d, press_path = pressed.d, pressed.path
+    if pressed.ended_by:
+        return Grip(press_path, (), None, pressed.ended_by)
     fixed = (np.zeros(d.ndof), 1.0)
     arc = ArcSettings(tol=settings.tol, max_iter=settings.max_iter)
     law = PenaltyContact(settings.stiffness, settings.onset)
-    try:
-        press = _landed(press, d, delta_max, law, arc)
-    except ConvergenceError as err:
-        return Grip(press, (), None, f"the press found no state at delta_max: {err}")
-    x, delta = press.states[-1].x.copy(), press.states[-1].delta
-    last, t_over_R = press.states[-1], d.capmesh.cap.t
-    if not (last.ring and last.apex_gap > settings.seal_lift * t_over_R):
-        return Grip(press, (), None,
-                    f"no ring around a dimple to seal at delta_max (contact {last.contact}, "
-                    f"apex {last.apex_gap / t_over_R:.3g} t above the plane; R = 1): press "
-                    "further")
+    x, delta = press_path.states[-1].x.copy(), press_path.states[-1].delta
     load = d.cavity
     if pocket == "sealed":
         try:
             d = seal(replace(d, cavity=replace(load, pocket=Pocket("sealed", p_atm, n))), x)
         except ValueError as err:
-            return Grip(press, (), None, f"nothing to seal at delta_max: {err}")
+            return Grip(press_path, (), None, f"nothing to seal at delta_max: {err}")
 
     def at(p):          # d with its cavity's gauge pressure p / C10
         return replace(d, cavity=replace(d.cavity, shell=replace(
@@ -164,24 +209,24 @@ def grip(d, delta_max: float, p_c: float, p_atm: float, n: float = 1.0,
                 break
             continue
         if pocket == "sealed" and dp.cavity.is_open(z):
-            return Grip(press, tuple(ramp), None,
+            return Grip(press_path, tuple(ramp), None,
                         f"the pocket opened at p_c = {(f + h) * p_c:.4g} C10 on the ramp")
         f, x = f + h, z
         V, p, r_seal = dp.cavity.measure(x)
         ramp.append(RampStep(f * p_c, rim_load(dp, r), p, V, r_seal))
         h = min(2 * h, 1.0 / ramp_steps)
     if p_c != 0 and f < 1.0 - 1e-12:
-        P_now = ramp[-1].P if ramp else press.states[-1].P
-        return Grip(press, tuple(ramp), None,
+        P_now = ramp[-1].P if ramp else press_path.states[-1].P
+        return Grip(press_path, tuple(ramp), None,
                     f"the ramp stopped at p_c = {f * p_c:.4g} C10 of {p_c:.4g} (a step of "
                     f"1e-3 of it failed, or {max_steps} tries), P {P_now:.3g} C10 R^2 "
-                    f"against {press.states[-1].P:.3g} at the press's end")
+                    f"against {press_path.states[-1].P:.3g} at the press's end")
     pull = trace_loading(at(p_c), delta, replace(settings, seal_at_turn=False,
                                                  ds_max=min(settings.ds_max, PULL_DS_MAX)),
                          progress,
                          unload_to=unload_to, x0=x, delta0=delta, adhesion=adhesion)
     ends = pull.ended_by.startswith("pocket opened") or not pull.ended_by
-    return Grip(press, tuple(ramp), pull, "" if ends else f"the pull stopped: {pull.ended_by}")
+    return Grip(press_path, tuple(ramp), pull, "" if ends else f"the pull stopped: {pull.ended_by}")
 
 
 def _landed(press: SnapPath, d, delta_max: float, law, arc) -> SnapPath:

@@ -114,7 +114,8 @@ class Pressed:
     ended_by: str
 
     def serves(self, d, delta_max: float, p_atm: float, settings: SnapSettings) -> bool:
-        """True if this is the press of `d` (the same object) to delta_max at p_atm."""
+        """True if this is the press of `d` (the same object) to delta_max at p_atm with
+        `settings`."""
         return (self.shell is d and self.delta_max == delta_max and self.p_atm == p_atm
                 and self.settings == settings)
 
@@ -226,7 +227,8 @@ def grip(d, delta_max: float, p_c: float, p_atm: float, n: float = 1.0,
                          progress,
                          unload_to=unload_to, x0=x, delta0=delta, adhesion=adhesion)
     ends = pull.ended_by.startswith("pocket opened") or not pull.ended_by
-    return Grip(press_path, tuple(ramp), pull, "" if ends else f"the pull stopped: {pull.ended_by}")
+    return Grip(press_path, tuple(ramp), pull,
+                "" if ends else f"the pull stopped: {pull.ended_by}")
 
 
 def _landed(press: SnapPath, d, delta_max: float, law, arc) -> SnapPath:

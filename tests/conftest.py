@@ -6,6 +6,11 @@ import os
 from pathlib import Path
 from concurrent.futures import ProcessPoolExecutor
 
+try:
+    import fcntl            # the small study's lock (POSIX)
+except ImportError:
+    fcntl = None
+
 import pytest
 
 from shell_adhesion.solver import solve_paths
@@ -74,8 +79,8 @@ def small_study(tmp_path_factory):
     others read its cube), where each worker used to compute its own."""
     from shell_adhesion.study.run import execute
     base = tmp_path_factory.getbasetemp()
-    shared = base.parent if os.environ.get("PYTEST_XDIST_WORKER") else base
-    d = shared / "small-study"
+    workers_share = os.environ.get("PYTEST_XDIST_WORKER") and fcntl is not None
+    d = (base.parent if workers_share else base) / "small-study"
     d.mkdir(exist_ok=True)
     with _exclusive(d / ".lock"):
         output = d / "results" / "small.nc"
@@ -90,11 +95,9 @@ def small_study(tmp_path_factory):
 
 @contextlib.contextmanager
 def _exclusive(path):
-    """Hold an exclusive lock on the file `path` (POSIX; elsewhere no lock: each worker of
-    a parallel run then computes on its own)."""
-    try:
-        import fcntl
-    except ImportError:
+    """Hold an exclusive lock on the file `path` (POSIX; elsewhere no lock, and each worker
+    of a parallel run computes in its own folder)."""
+    if fcntl is None:
         yield
         return
     with open(path, "w") as lock:

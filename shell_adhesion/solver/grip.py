@@ -131,22 +131,22 @@ def press(d, delta_max: float, p_atm: float, settings: SnapSettings = SnapSettin
     d, x0, _ = bind_depressurised(d, Pocket("vented"), Cavity("pressure", p=0.0, p_atm=p_atm))
     path = trace_loading(d, delta_max, replace(settings, seal_at_turn=False), progress, x0=x0)
 
-    def pressed(ended_by=""):
+    def pressed(path, ended_by=""):
         return Pressed(shell, d, delta_max, p_atm, settings, path, ended_by)
     if path.ended_by:
-        return pressed(f"the press stopped: {path.ended_by}")
+        return pressed(path, f"the press stopped: {path.ended_by}")
     arc = ArcSettings(tol=settings.tol, max_iter=settings.max_iter)
     try:
-        path = _landed(path, d, delta_max, PenaltyContact(settings.stiffness, settings.onset),
-                       arc)
+        landed = _landed(path, d, delta_max, PenaltyContact(settings.stiffness, settings.onset),
+                         arc)
     except ConvergenceError as err:
-        return pressed(f"the press found no state at delta_max: {err}")
-    last, t_over_R = path.states[-1], shell.capmesh.cap.t
+        return pressed(path, f"the press found no state at delta_max: {err}")
+    last, t_over_R = landed.states[-1], shell.capmesh.cap.t
     if not (last.ring and last.apex_gap > settings.seal_lift * t_over_R):
-        return pressed(f"no ring around a dimple to seal at delta_max (contact {last.contact}, "
-                       f"apex {last.apex_gap / t_over_R:.3g} t above the plane; R = 1): press "
-                       "further")
-    return pressed()
+        return pressed(landed, f"no ring around a dimple to seal at delta_max (contact "
+                       f"{last.contact}, apex {last.apex_gap / t_over_R:.3g} t above the "
+                       "plane; R = 1): press further")
+    return pressed(landed)
 
 
 def grip(d, delta_max: float, p_c: float, p_atm: float, n: float = 1.0,

@@ -6,6 +6,8 @@ to the inner rim (the lid and the axis add nothing), evaluated exactly on the Q2
 (3-point Gauss: r^2 z' is a quintic).  Its gradient is the follower load of a unit pressure
 on the inner surface plus the lid's pull on the rim (the boundary term pi r_i^2 dz), so a
 gauge pressure p does the work p dV and the load is conservative (Maugis' method holds).
+The lid is also a contact: the inner surface is pushed back where it would pass it
+(solver.lid; its energy is part of `CavityLoad.energy`, zero where nothing reaches it).
 
 Modes (DESIGN.md section 8):
 - "open": no cavity (today's model);
@@ -27,6 +29,7 @@ from skfem import MeshQuad2
 
 from .contact import constraints
 from .forms import discretise
+from .lid import LID_THROUGH, lid_of
 from shell_adhesion.errors import InputError
 from .path import Settings, Timer, _Problem
 from shell_adhesion.errors import ConvergenceError
@@ -123,6 +126,7 @@ class CavityLoad:
     slots: np.ndarray      # (E, 36) positions of the edge blocks in the FE CSR data
     V0: float              # enclosed volume of the undeformed cap (discrete)
     border: tuple = ()     # sealed: (rows, indptr, indices, old_pos, col_pos, last_pos)
+    lid: object = None     # the lid's contact with the inner surface (solver.lid.Lid)
 
     @property
     def extra_dofs(self) -> int:
@@ -143,12 +147,9 @@ class CavityLoad:
         return float(np.pi * np.sum(_GAUSS_W * r * r * zp))
 
     def through_lid(self, x) -> bool:
-        """Whether the inner surface of state x rises above its rim, where the rigid lid
-        closes the cavity (the shell inverted through it: the lid's contact is not
-        modelled)."""
-        z = self.Z0 + x[self.dofs][:, 3:]
-        rim = np.unravel_index(np.argmax(self.R0), self.R0.shape)
-        return bool(z.max() > z[rim] + 1e-9)
+        """Whether the inner surface of state x has passed the lid by more than
+        lid.LID_THROUGH (its contact penalty failed to hold it: not an equilibrium)."""
+        return self.lid.penetration(x) > LID_THROUGH
 
     def _trace(self, x):
         u = x[self.dofs]
@@ -181,18 +182,18 @@ class CavityLoad:
         return gas_energy(V, self.V0, c.p0, c.p_atm, c.n)
 
     def energy(self, x) -> float:
-        """Energy of the pressure load in state x: -p (V - V0), or E_gas(V) if sealed."""
+        """Energy of the pressure load in state x, -p (V - V0) or E_gas(V) if sealed, plus
+        the lid's contact energy (0 where nothing touches it)."""
         V = self.volume(x)
-        if self.cavity.sealed:
-            return self.gas_energy(V)
-        return -self.cavity.p * (V - self.V0)
+        E = self.gas_energy(V) if self.cavity.sealed else -self.cavity.p * (V - self.V0)
+        return E + self.lid.energy(x)
 
     # ------------------------------------------------------- residual and tangent
     def add_residual(self, x, r):
         """r (FE internal forces, extended by the gas row if sealed) plus the load terms."""
         V, g, _ = self.volume_derivatives(x)
         p = self.pressure(x)
-        r = r.copy()
+        r = self.lid.add_residual(x, r).copy()
         np.add.at(r, self.dofs.ravel(), -p * g.ravel())
         if self.cavity.sealed:
             r[self.n_fe] = self.gas_volume(p)[0] - V
@@ -200,7 +201,9 @@ class CavityLoad:
 
     def add_tangent(self, K, r, x):
         """(K, r) of the FE forms plus the follower-load stiffness -p d2V, and, if sealed,
-        the bordered gas row and column (-dV/dx, dV_gas/dp).  K's sparsity is kept."""
+        the bordered gas row and column (-dV/dx, dV_gas/dp), and the lid's contact.  K's
+        sparsity is kept."""
+        K, r = self.lid.add_tangent(K, r, x)
         V, g, H = self.volume_derivatives(x)
         p = self.pressure(x)
         if not self.cavity.sealed:
@@ -267,10 +270,12 @@ def bind(d, cavity: Cavity):
     if len(inner) % 2 != 1 or np.any(inner[1::2] < cm.mesh.nvertices):
         raise ValueError("inner surface nodes do not alternate corner / midside")
     nodes = np.stack([inner[0:-1:2], inner[1::2], inner[2::2]], axis=1)   # (E, 3)
+    d, lid = lid_of(d, nodes)
     n_fe = 2 * d.n2 + d.n1
     dofs = np.concatenate([nodes, d.n2 + nodes], axis=1)
     slots = edge_slots(d, dofs)
-    load = CavityLoad(cavity, n_fe, dofs, cm.nodes[0, nodes], cm.nodes[1, nodes], slots, 1.0)
+    load = CavityLoad(cavity, n_fe, dofs, cm.nodes[0, nodes], cm.nodes[1, nodes], slots, 1.0,
+                      lid=lid)
     load = replace(load, V0=load.volume(np.zeros(n_fe + 1)))
     if cavity.sealed:
         load = replace(load, border=_border(d.csr_indptr, d.csr_indices, np.unique(dofs)))

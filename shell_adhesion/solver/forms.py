@@ -8,7 +8,7 @@ operator B is assembled once and reused.  The material (`solver.material`) is pa
 discretisation; with a compressible one (D1 > 0) the pressure rows gain -(D1 C10 / 2) p, the
 same sparsity.
 """
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cached_property
 
 import numpy as np
@@ -134,6 +134,23 @@ def discretise(capmesh: CapMesh, C10: float = 1.0,
     indptr = np.searchsorted(keys // ndof, np.arange(ndof + 1)).astype(np.int32)
     return Discretisation(capmesh, n2, n1, edofs, B, Np, bu.dx * 2 * np.pi * rq * C10, rq, zq,
                           indptr, indices, slot.ravel(), material)
+
+
+def with_couplings(d: Discretisation, rows, cols) -> Discretisation:
+    """`d` with its CSR pattern extended by the entries (rows, cols) and their transposes
+    (a load coupling dofs that share no element: the cavity's lid, solver.cavity); the
+    element entries keep their values, the new ones start at zero."""
+    ndof = len(d.csr_indptr) - 1
+    old = (np.repeat(np.arange(ndof, dtype=np.int64), np.diff(d.csr_indptr)) * ndof
+           + d.csr_indices)
+    rows, cols = np.asarray(rows, dtype=np.int64), np.asarray(cols, dtype=np.int64)
+    keys = np.union1d(old, np.concatenate([rows * ndof + cols, cols * ndof + rows]))
+    if len(keys) == len(old):
+        return d
+    indices = (keys % ndof).astype(np.int32)
+    indptr = np.searchsorted(keys // ndof, np.arange(ndof + 1)).astype(np.int32)
+    slot = np.searchsorted(keys, old)[d.csr_slot]
+    return replace(d, csr_indptr=indptr, csr_indices=indices, csr_slot=slot)
 
 
 def _fields(d: Discretisation, x):

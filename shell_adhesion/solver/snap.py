@@ -80,6 +80,7 @@ from .cohesive import CohesiveLaw, Interface, penalty, point_anchors_at, scaled
 from .contact import INTERFACES, constraints, gaps, rim_load
 from .forms import Discretisation, discretise, potential_energy, strain_energy
 from .geometry import T_MIN, Cap, check_cap, check_delta_max
+from .lid import LID_THROUGH
 from .mesh import cap_mesh, mesh_spec
 from .linear import Timer
 from .pocket import PocketLoad, PocketOpened, seal
@@ -358,10 +359,11 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
     delta + push, itself `landed` where it lost more energy than the push's work brought,
     `_jumped_beyond`, and its dissipation recorded beyond that work); so does a loading
     from a depressurised start whose rim load fell to nothing (lifted off: the cavity
-    holds the dimple off the plane).  A state whose
-    inner surface rises above the rim, through the cavity's rigid lid (not modelled),
-    ends the path before it ("inverted through the cavity's lid ...").  `progress(state)`
-    is called after each state if given.
+    holds the dimple off the plane).  The cavity's rigid lid at the rim stops the inner
+    surface (solver.lid, a contact penalty); a state whose inner surface has passed it
+    by more than lid.LID_THROUGH anyway ends the path before it ("through the cavity's
+    lid ...": not an equilibrium).  `progress(state)` is called after each state if
+    given.
 
     `x0` the state at delta = 0 (default the undeformed one): the free shell under its
     cavity's pressure, just touching the plane (cavity.first_touch, on its moved mesh);
@@ -636,8 +638,8 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
 
 
 def _through_lid(lid, states) -> bool:
-    """Whether the last state's inner surface rises above the rim of the cavity `lid`
-    (None: no cavity of the shell's own)."""
+    """Whether the last state's inner surface has passed the lid of the cavity `lid` by
+    more than lid.LID_THROUGH (None: no cavity of the shell's own)."""
     return lid is not None and len(states) > 1 and lid.through_lid(states[-1].x)
 
 
@@ -645,9 +647,9 @@ def _lid_ends(states) -> str:
     """Drop the last state (through the lid) and say where the path ends."""
     states.pop()
     states[-1] = dataclasses.replace(states[-1], anchor_jump=0.0)
-    return (f"inverted through the cavity's lid from delta = {states[-1].delta:.6g} R: the "
-            "next state's inner surface rises above the rim, where the rigid lid would "
-            "stop it (not modelled)")
+    return (f"through the cavity's lid from delta = {states[-1].delta:.6g} R: the next "
+            f"state's inner surface passed the rigid lid by more than {LID_THROUGH:g} R "
+            "(its contact penalty did not hold it)")
 
 
 def _append(states, after: SnapState, jumped: bool):

@@ -1,0 +1,112 @@
+"""The rigid lid that closes a shell's cavity at its rim, as a contact for the inner surface.
+
+The lid is the plane of the rim's inner edge (it moves with the held rim face, whose u_z is
+-delta).  A point of the deformed inner surface above it penetrates: its gap
+
+    g = (Z_rim + u_z,rim) - z     (units of R; > 0 below the lid, clear of it)
+
+is pushed back by the contact penalty of the plane (`cohesive.penalty`: slope LID_STIFFNESS
+C10 / R, rising from 0 over the first LID_ONSET R of penetration, snap.PenaltyContact's),
+integrated over the reference inner surface (3 Gauss points per Q2 edge, weight 2 pi R dS).
+The energy sum_q w phi(g_q) is exact in u (g is linear in it), so the contact is
+conservative and the energy method's balance holds with it.  Where nothing reaches the lid
+it adds exactly nothing.  Its tangent couples every inner node's u_z with the rim's, which
+share no element: `lid_of` extends the FE pattern (`forms.with_couplings`).
+
+Units: lengths / R, energies / (C10 R^3), forces / (C10 R^2).  Pure functions.
+"""
+from dataclasses import dataclass
+import math
+
+import numpy as np
+
+from .cohesive import penalty
+from .forms import with_couplings
+
+LID_STIFFNESS = 1e4     # C10 / R: the plane's contact penalty (snap.PenaltyContact)
+LID_ONSET = 1e-4        # R: ... its onset
+LID_THROUGH = 10 * LID_ONSET   # a penetration beyond this is a failure, not a contact (the
+#                                penalty holds a contact pressure of 0.5 C10 within the onset)
+
+_GAUSS_X = 0.5 + 0.5 * np.array([-math.sqrt(0.6), 0.0, math.sqrt(0.6)])
+_GAUSS_W = np.array([5.0, 8.0, 5.0]) / 18.0
+_N = np.stack([2 * (_GAUSS_X - 0.5) * (_GAUSS_X - 1), -4 * _GAUSS_X * (_GAUSS_X - 1),
+               2 * _GAUSS_X * (_GAUSS_X - 0.5)], axis=1)        # (Q, 3)
+_DN = np.stack([4 * _GAUSS_X - 3, 4 - 8 * _GAUSS_X, 4 * _GAUSS_X - 1], axis=1)
+
+
+@dataclass(frozen=True, eq=False)
+class Lid:
+    """The lid's contact on the inner-surface edges of one discretisation."""
+
+    dofs: np.ndarray     # (E, 4) u_z of each edge's 3 nodes, then the rim's u_z
+    Z0: np.ndarray       # (E, 3) reference z of the edge nodes
+    Z_rim: float         # reference z of the rim's inner edge (the lid's plane at delta 0)
+    w: np.ndarray        # (E, Q) 2 pi R dS times the Gauss weight, reference
+    slots: np.ndarray    # (E, 16) positions of the (4 x 4) edge blocks in the CSR data
+    stiffness: float = LID_STIFFNESS
+    onset: float = LID_ONSET
+
+    def gaps(self, x) -> np.ndarray:
+        """g / R at the Gauss points (E, Q): the lid's height above each point."""
+        u = x[self.dofs]
+        return (self.Z_rim + u[:, 3:4]) - (self.Z0 + u[:, :3]) @ _N.T
+
+    def penetration(self, x) -> float:
+        """The deepest penetration / R of the inner surface into the lid (0 if none)."""
+        return float(max(0.0, -self.gaps(x).min()))
+
+    def energy(self, x) -> float:
+        """The penalty's energy / (C10 R^3) in state x."""
+        return float(np.sum(self.w * penalty(self.gaps(x), self.stiffness, self.onset)[0]))
+
+    def _in_contact(self, x):
+        """(edges with a point above the lid, w dphi/dg and w d2phi/dg2 there (E_c, Q))."""
+        g = self.gaps(x)
+        edges = np.flatnonzero((g < 0.0).any(axis=1))
+        _, stress, slope = penalty(g[edges], self.stiffness, self.onset)
+        return edges, stress * self.w[edges], slope * self.w[edges]
+
+    def add_residual(self, x, r):
+        """r plus the lid's forces dE/dx (a copy; r itself where nothing touches)."""
+        edges, s, _ = self._in_contact(x)
+        if not len(edges):
+            return r
+        r = r.copy()
+        np.add.at(r, self.dofs[edges].ravel(), (s @ _DG).ravel())
+        return r
+
+    def add_tangent(self, K, r, x):
+        """(K, r) plus the lid's forces and stiffness d2E/dx2 (K's pattern: `lid_of`)."""
+        edges, s, k = self._in_contact(x)
+        if not len(edges):
+            return K, r
+        r = r.copy()
+        np.add.at(r, self.dofs[edges].ravel(), (s @ _DG).ravel())
+        data = K.data.copy()
+        np.add.at(data, self.slots[edges].ravel(),
+                  np.einsum("eq,qa,qb->eab", k, _DG, _DG).ravel())
+        return type(K)((data, K.indices, K.indptr), shape=K.shape), r
+
+
+_DG = np.concatenate([-_N, np.ones((len(_GAUSS_X), 1))], axis=1)   # (Q, 4): dg / du
+
+
+def lid_of(d, nodes: np.ndarray):
+    """(d with its pattern extended, Lid) for the inner-surface edges `nodes` (E, 3),
+    ordered from the apex to the rim (the last node is the rim's inner edge)."""
+    cm = d.capmesh
+    rim = int(nodes[-1, 2])
+    uz = d.n2 + nodes
+    inner = np.unique(uz)
+    d = with_couplings(d, inner, np.full(len(inner), d.n2 + rim))
+    dofs = np.concatenate([uz, np.full((len(nodes), 1), d.n2 + rim)], axis=1)
+    R0, Z0 = cm.nodes[0, nodes], cm.nodes[1, nodes]
+    dS = np.hypot(R0 @ _DN.T, Z0 @ _DN.T)                      # |dX / dxi| (E, Q)
+    w = 2 * np.pi * (R0 @ _N.T) * dS * _GAUSS_W
+    ndof = len(d.csr_indptr) - 1
+    keys = (np.repeat(np.arange(ndof, dtype=np.int64), np.diff(d.csr_indptr)) * ndof
+            + d.csr_indices)
+    pairs = (dofs[:, :, None].astype(np.int64) * ndof + dofs[:, None, :]).reshape(len(dofs), 16)
+    slots = np.searchsorted(keys, pairs)
+    return d, Lid(dofs, Z0, float(cm.nodes[1, rim]), w, slots)

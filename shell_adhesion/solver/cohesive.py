@@ -57,6 +57,7 @@ from functools import cached_property
 import numpy as np
 
 from .forms import Discretisation, tangent_pattern
+from .penalty import penalty
 
 # the Tabor-Maugis parameters supported: DMT-like 0.05 to 3.  A path must resolve the
 # cohesive zone at its contact edge, (m - 1) / m of the contact radius at a sphere's
@@ -131,18 +132,6 @@ class CohesiveLaw:
         0 at g = 0 over -e < g < 0, e = PENALTY_ONSET delta_c (a continuous slope: Newton
         does not cycle on points that touch)."""
         return penalty(g, self.stiffness, PENALTY_ONSET * self.delta_c)
-
-
-def penalty(g, k: float, e: float):
-    """(energy, stress, slope) of a contact penalty on the gap g (< 0: penetration): slope
-    k beyond -e, rising linearly from 0 at g = 0 over -e < g < 0 (a continuous slope:
-    Newton does not cycle on points that touch)."""
-    h = np.clip(g, -e, 0.0)
-    deep = np.minimum(g + e, 0.0)
-    energy = -k * h ** 3 / (6 * e) + k * (deep * (deep / 2 - e / 2))
-    stress = -k * h ** 2 / (2 * e) + k * deep
-    slope = np.where(g < -e, k, -k * h / e)
-    return energy, stress, slope
 
 
 def mixed(law: CohesiveLaw, beta: float, g, s):

@@ -5,7 +5,7 @@ The lid is the plane of the rim's inner edge (it moves with the held rim face, w
 
     g = (Z_rim + u_z,rim) - z     (units of R; > 0 below the lid, clear of it)
 
-is pushed back by the contact penalty of the plane (`cohesive.penalty`: slope LID_STIFFNESS
+is pushed back by the contact penalty of the plane (`penalty.penalty`: slope LID_STIFFNESS
 C10 / R, rising from 0 over the first LID_ONSET R of penetration, snap.PenaltyContact's),
 integrated over the reference inner surface (3 Gauss points per Q2 edge, weight 2 pi R dS).
 The energy sum_q w phi(g_q) is exact in u (g is linear in it), so the contact is
@@ -20,8 +20,8 @@ import math
 
 import numpy as np
 
-from .cohesive import penalty
 from .forms import with_couplings
+from .penalty import penalty
 
 LID_STIFFNESS = 1e4     # C10 / R: the plane's contact penalty (snap.PenaltyContact)
 LID_ONSET = 1e-4        # R: ... its onset

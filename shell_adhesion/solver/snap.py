@@ -76,11 +76,12 @@ from shell_adhesion.errors import ConvergenceError, InputError
 
 from .arclength import (SWITCH_OFF, ArcSettings, _Continuation, _descend, _switch_on, least_P,
                         work as arc_work)
-from .cohesive import CohesiveLaw, Interface, penalty, point_anchors_at, scaled
+from .cohesive import CohesiveLaw, Interface, point_anchors_at, scaled
 from .contact import INTERFACES, constraints, gaps, rim_load
 from .forms import Discretisation, discretise, potential_energy, strain_energy
 from .geometry import T_MIN, Cap, check_cap, check_delta_max
 from .lid import LID_THROUGH
+from .penalty import penalty
 from .mesh import cap_mesh, mesh_spec
 from .linear import Timer
 from .pocket import PocketLoad, PocketOpened, seal

@@ -5,9 +5,9 @@ The shell's own cavity, closed at the rim by a rigid lid, is held at -f p_cl (p_
 (t/R)^2); the free shell touching the plane is pressed to --delta-max.  Where its rim load
 falls to nothing (lifted off: the suction holds the dimple off the plane), the rim is pushed
 on and the shell let settle (snap._jump): prints, per fraction, how the loading ends, the
-lift-off, the state it lands on (its apex's height and whether its inner surface stays below
-the lid), the energy balance and the wall time; --figure: P against delta, and the meridian
-at the lift-off and after it with the lid.
+lift-off, the state it lands on (its apex's height and whether its inner surface rests on
+the cavity's lid, solver.lid, with the lid's push), the energy balance and the wall time;
+--figure: P against delta, and the meridian at the lift-off and after it with the lid.
 Run: python benchmarks/lift_off.py [--t 0.02] [--h 1] [--fractions 0.2,0.25] [--mesh coarser]
 [--delta-max 5] [--figure PNG]   (--delta-max in thicknesses t).  Bad input: one line, exit 2.
 """
@@ -63,16 +63,28 @@ def main(argv=None):
               f"ended: {path.ended_by or f'at {path.states[-1].delta / T:.3f} t'}")
         for j in path.jumps():
             land = path.states[j.i_to]
-            lid = d.cavity.shell.through_lid(land.x)
             print(f"  jump at {j.delta / T:.3f} t: P {j.P_from:.3g} -> {j.P_to:.3g} C10 R^2, "
                   f"contact {j.contact_from} -> {j.contact_to}; lands with the apex "
-                  f"{land.apex_gap:.4f} R above the plane"
-                  f"{', through the lid' if lid else ', below the lid'}")
+                  f"{land.apex_gap:.4f} R above the plane, {_on_lid(d, land.x)}")
         print(f"  energy balance {path.energy_miss():.2e} of max U; {len(path.states)} states, "
               f"{wall:.1f} s")
     if a.figure:
         _figure(paths, T, a.figure)
     return 0
+
+
+def _on_lid(d, x) -> str:
+    """Where the inner surface of state x is against the cavity's lid (solver.lid): its
+    gap below the lid, or the lid's push on the shell and how far into it."""
+    cavity = d.cavity.shell
+    lid = cavity.lid
+    if cavity.through_lid(x):
+        return f"through the lid by {lid.penetration(x):.3g} R"
+    if lid.penetration(x) == 0:
+        return f"below the lid (by {lid.gaps(x).min():.3g} R at least)"
+    push = -lid.add_residual(x, np.zeros(len(x)))[lid.dofs[0, 3]]
+    return (f"on the lid (its push {push:.3g} C10 R^2, {lid.penetration(x):.2g} R into "
+            "it)")
 
 
 def _figure(paths, T, out):

@@ -19,6 +19,8 @@ import pytest
 from shell_adhesion.errors import InputError
 from shell_adhesion.solver import arclength
 from shell_adhesion.solver import cavity as cv
+from shell_adhesion.solver import lid as lid_rules
+from shell_adhesion.solver import snap
 from shell_adhesion.solver import maugis_dugdale as md
 from shell_adhesion.solver import pocket as pk
 from shell_adhesion.solver.cohesive import CohesiveLaw, Interface
@@ -176,6 +178,19 @@ def test_past_its_lift_off_the_dimple_collapses_onto_the_cavity_lid():
                                                        abs=1e-6)
     # the lid's energy is in the balance (the cavity's load energy)
     assert path.energy_miss() <= ENERGY
+
+
+def test_a_state_through_the_lid_ends_the_path(monkeypatch):
+    # the lid's penalty lets the surface in by 1.7e-5 R at the landing above; with the
+    # failure bound below that, the same landing counts as through the lid: the path
+    # ends at the state before it, and says so
+    monkeypatch.setattr(lid_rules, "LID_THROUGH", 1e-6)
+    monkeypatch.setattr(snap, "LID_THROUGH", 1e-6)
+    d, path, _ = _path.__wrapped__(0.25)
+    assert path.ended_by.startswith("through the cavity's lid from delta")
+    assert "more than 1e-06 R" in path.ended_by
+    assert not d.cavity.shell.through_lid(path.states[-1].x)
+    assert path.states[-1].delta / T == pytest.approx(2.87, abs=0.01)
 
 
 def test_pressed_past_its_lift_off_the_dimple_collapses_into_the_cavity():

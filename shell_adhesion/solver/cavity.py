@@ -28,8 +28,9 @@ import numpy as np
 from skfem import MeshQuad2
 
 from .contact import constraints
+from .edge_quadrature import DN as _DN, GAUSS_W as _GAUSS_W, N as _N
 from .forms import discretise
-from .lid import LID_THROUGH, lid_of
+from .lid import lid_of
 from shell_adhesion.errors import InputError
 from .path import Settings, Timer, _Problem
 from shell_adhesion.errors import ConvergenceError
@@ -37,12 +38,6 @@ from shell_adhesion.errors import ConvergenceError
 MODES = ("open", "pressure", "sealed")
 P_ATM_KPA = 101.325           # standard atmosphere [kPa]
 
-_GAUSS_X = 0.5 + 0.5 * np.array([-math.sqrt(0.6), 0.0, math.sqrt(0.6)])
-_GAUSS_W = np.array([5.0, 8.0, 5.0]) / 18.0
-# 1D Q2 shape functions (nodes at 0, 1/2, 1) and derivatives at the Gauss points: (Q, 3)
-_N = np.stack([2 * (_GAUSS_X - 0.5) * (_GAUSS_X - 1), -4 * _GAUSS_X * (_GAUSS_X - 1),
-               2 * _GAUSS_X * (_GAUSS_X - 0.5)], axis=1)
-_DN = np.stack([4 * _GAUSS_X - 3, 4 - 8 * _GAUSS_X, 4 * _GAUSS_X - 1], axis=1)
 
 
 @dataclass(frozen=True)
@@ -125,8 +120,8 @@ class CavityLoad:
     Z0: np.ndarray         # (E, 3)
     slots: np.ndarray      # (E, 36) positions of the edge blocks in the FE CSR data
     V0: float              # enclosed volume of the undeformed cap (discrete)
+    lid: object            # the lid's contact with the inner surface (solver.lid.Lid)
     border: tuple = ()     # sealed: (rows, indptr, indices, old_pos, col_pos, last_pos)
-    lid: object = None     # the lid's contact with the inner surface (solver.lid.Lid)
 
     @property
     def extra_dofs(self) -> int:
@@ -147,9 +142,8 @@ class CavityLoad:
         return float(np.pi * np.sum(_GAUSS_W * r * r * zp))
 
     def through_lid(self, x) -> bool:
-        """Whether the inner surface of state x has passed the lid by more than
-        lid.LID_THROUGH (its contact penalty failed to hold it: not an equilibrium)."""
-        return self.lid.penetration(x) > LID_THROUGH
+        """Whether the inner surface of state x has passed the lid (`lid.Lid.through`)."""
+        return self.lid.through(x)
 
     def _trace(self, x):
         u = x[self.dofs]

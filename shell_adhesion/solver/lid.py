@@ -16,10 +16,10 @@ share no element: `lid_of` extends the FE pattern (`forms.with_couplings`).
 Units: lengths / R, energies / (C10 R^3), forces / (C10 R^2).  Pure functions.
 """
 from dataclasses import dataclass
-import math
 
 import numpy as np
 
+from .edge_quadrature import DN as _DN, GAUSS_W as _GAUSS_W, GAUSS_X as _GAUSS_X, N as _N
 from .forms import with_couplings
 from .penalty import penalty
 
@@ -28,11 +28,7 @@ LID_ONSET = 1e-4        # R: ... its onset
 LID_THROUGH = 10 * LID_ONSET   # a penetration beyond this is a failure, not a contact (the
 #                                penalty holds a contact pressure of 0.5 C10 within the onset)
 
-_GAUSS_X = 0.5 + 0.5 * np.array([-math.sqrt(0.6), 0.0, math.sqrt(0.6)])
-_GAUSS_W = np.array([5.0, 8.0, 5.0]) / 18.0
-_N = np.stack([2 * (_GAUSS_X - 0.5) * (_GAUSS_X - 1), -4 * _GAUSS_X * (_GAUSS_X - 1),
-               2 * _GAUSS_X * (_GAUSS_X - 0.5)], axis=1)        # (Q, 3)
-_DN = np.stack([4 * _GAUSS_X - 3, 4 - 8 * _GAUSS_X, 4 * _GAUSS_X - 1], axis=1)
+_DG = np.concatenate([-_N, np.ones((len(_GAUSS_X), 1))], axis=1)   # (Q, 4): dg / du
 
 
 @dataclass(frozen=True, eq=False)
@@ -55,6 +51,11 @@ class Lid:
     def penetration(self, x) -> float:
         """The deepest penetration / R of the inner surface into the lid (0 if none)."""
         return float(max(0.0, -self.gaps(x).min()))
+
+    def through(self, x) -> bool:
+        """Whether the inner surface of state x has passed the lid by more than
+        LID_THROUGH: not an equilibrium the contact can vouch for (its penalty failed)."""
+        return self.penetration(x) > LID_THROUGH
 
     def energy(self, x) -> float:
         """The penalty's energy / (C10 R^3) in state x."""
@@ -87,9 +88,6 @@ class Lid:
         np.add.at(data, self.slots[edges].ravel(),
                   np.einsum("eq,qa,qb->eab", k, _DG, _DG).ravel())
         return type(K)((data, K.indices, K.indptr), shape=K.shape), r
-
-
-_DG = np.concatenate([-_N, np.ones((len(_GAUSS_X), 1))], axis=1)   # (Q, 4): dg / du
 
 
 def lid_of(d, nodes: np.ndarray):

@@ -40,9 +40,10 @@ import numpy as np
 
 from shell_adhesion.errors import ConvergenceError, InputError
 
-from .cavity import (P_ATM_KPA, Cavity, _border, _GAUSS_W, _GAUSS_X, edge_slots,
-                     first_touch, gas_energy, gas_volume, pressure_tangent)
+from .cavity import (P_ATM_KPA, Cavity, _border, edge_slots, first_touch, gas_energy,
+                     gas_volume, pressure_tangent)
 from .cavity import bind as bind_cavity
+from .edge_quadrature import GAUSS_W as _GAUSS_W, GAUSS_X as _GAUSS_X
 
 MODES = ("vented", "sealed")
 

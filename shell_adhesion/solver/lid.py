@@ -25,8 +25,8 @@ from .penalty import penalty
 
 LID_STIFFNESS = 1e4     # C10 / R: the plane's contact penalty (snap.PenaltyContact)
 LID_ONSET = 1e-4        # R: ... its onset
-LID_THROUGH = 10 * LID_ONSET   # a penetration beyond this is a failure, not a contact (the
-#                                penalty holds a contact pressure of 0.5 C10 within the onset)
+LID_THROUGH = 10 * LID_ONSET   # a penetration beyond this is a failure, not a contact (it
+#                                would carry a contact pressure of 9.5 C10)
 
 _DG = np.concatenate([-_N, np.ones((len(_GAUSS_X), 1))], axis=1)   # (Q, 4): dg / du
 
@@ -71,6 +71,9 @@ class Lid:
     def add_residual(self, x, r):
         """r plus the lid's forces dE/dx (a copy; r itself where nothing touches)."""
         edges, s, _ = self._in_contact(x)
+        return self._with_forces(r, edges, s)
+
+    def _with_forces(self, r, edges, s):
         if not len(edges):
             return r
         r = r.copy()
@@ -82,8 +85,7 @@ class Lid:
         edges, s, k = self._in_contact(x)
         if not len(edges):
             return K, r
-        r = r.copy()
-        np.add.at(r, self.dofs[edges].ravel(), (s @ _DG).ravel())
+        r = self._with_forces(r, edges, s)
         data = K.data.copy()
         np.add.at(data, self.slots[edges].ravel(),
                   np.einsum("eq,qa,qb->eab", k, _DG, _DG).ravel())

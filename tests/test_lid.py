@@ -10,8 +10,9 @@ from shell_adhesion.solver import cavity as cv
 from shell_adhesion.solver.forms import (discretise, lagrangian, residual, tangent,
                                          with_couplings)
 from shell_adhesion.solver.geometry import Cap
-from shell_adhesion.solver.lid import LID_ONSET, LID_STIFFNESS, lid_of
+from shell_adhesion.solver.lid import LID_ONSET, LID_STIFFNESS, LID_THROUGH, lid_of
 from shell_adhesion.solver.mesh import cap_mesh, mesh_spec
+from shell_adhesion.solver.quality import quality, worst
 
 P_ATM = 0.3378
 
@@ -113,3 +114,18 @@ def test_the_lids_pattern_keeps_every_element_entry():
     assert (K - K_wide).count_nonzero() == 0 and K_wide.nnz == len(wide.csr_indices)
     # couplings already in the pattern change nothing
     assert with_couplings(d, d.edofs[9, :1], d.edofs[10, :1]) is d
+
+
+def test_a_state_through_the_lid_is_refused_as_element_quality_is():
+    # the energy method's paths check each state (solver.quality); a surface the lid's
+    # penalty has let through by more than LID_THROUGH is not an equilibrium it vouches for
+    _, d = _shell()
+    lid = d.cavity.lid
+    held = _through(d, lid, 2 * LID_ONSET)
+    assert 0 < quality(d, held).lid_penetration <= LID_THROUGH
+    assert "lid" not in quality(d, held).problem()
+    through = _through(d, lid, 2 * LID_THROUGH)
+    q = quality(d, through)
+    assert q.lid_penetration > LID_THROUGH
+    assert q.problem().startswith("the inner surface passed the cavity's lid by")
+    assert worst(quality(d, held), q).lid_penetration == q.lid_penetration

@@ -1,5 +1,7 @@
-"""Element quality of a converged state: inverted or distorted elements, and the pointwise
-volume ratio J of the incompressible material.
+"""Element quality of a converged state: inverted or distorted elements, the pointwise
+volume ratio J of the incompressible material, and (a shell with a closed cavity) how far
+its inner surface has passed the cavity's rigid lid (solver.lid: beyond LID_THROUGH the
+lid's contact penalty did not hold it).
 
 All measures are taken at the quadrature points of the displacement basis and are
 dimensionless.  J = det F is the local volume ratio (hoop stretch included); the
@@ -21,6 +23,7 @@ from functools import lru_cache
 import numpy as np
 
 from .forms import Discretisation, deformation
+from .lid import LID_THROUGH
 
 # the refusal thresholds (DESIGN.md section 8): beyond them a result is not given
 J_RANGE = (0.75, 4 / 3)    # pointwise J of an incompressible material (healthy states: +-12 %)
@@ -38,6 +41,7 @@ class Quality:
     distortion_min: float = 1.0
     element: int = -1          # element of the worst measure
     hoop_min: float = 1.0      # smallest hoop stretch r / R_ref (<= 0: material crossed the axis)
+    lid_penetration: float = 0.0   # deepest penetration / R of the cavity's lid (solver.lid)
 
     def as_dict(self) -> dict:
         return dict(J_min=self.J_min, J_max=self.J_max, detF_min=self.detF_min,
@@ -49,6 +53,9 @@ class Quality:
         if not all(np.isfinite([self.J_min, self.J_max, self.detF_min, self.distortion_min,
                                 self.hoop_min])):
             return "non-finite deformation"
+        if self.lid_penetration > LID_THROUGH:
+            return (f"the inner surface passed the cavity's lid by {self.lid_penetration:.3g} R "
+                    f"(more than {LID_THROUGH:g} R: its contact penalty did not hold it)")
         if self.hoop_min <= 0:
             return (f"element {self.element} has crossed the axis (hoop stretch "
                     f"{self.hoop_min:.3g} <= 0)")
@@ -89,8 +96,10 @@ def quality(d: Discretisation, x) -> Quality:
     checked = np.flatnonzero(~rim_corner_elements(d.capmesh))
     J_in = J[checked]
     e_J = int(checked[np.argmax(np.abs(np.log(np.abs(J_in) + 1e-300)).max(axis=1))])
+    lid = getattr(getattr(d.cavity, "shell", d.cavity), "lid", None)    # pocket or cavity
     q = Quality(float(J_in.min()), float(J_in.max()), float(det2.min()), float(ratio.min()),
-                hoop_min=float(f[4].min()))
+                hoop_min=float(f[4].min()),
+                lid_penetration=0.0 if lid is None else lid.penetration(x))
     element = (e_hoop if q.hoop_min <= 0 else e_det if q.detF_min <= 0
                else e_ratio if q.distortion_min < DISTORTION_MIN else e_J)
     return replace(q, element=element)
@@ -106,4 +115,4 @@ def worst(*qs: Quality) -> Quality:
                                  -max(-np.log(max(q.J_min, 1e-300)), np.log(max(q.J_max, 1e-300)))))
     return Quality(min(q.J_min for q in qs), max(q.J_max for q in qs),
                    min(q.detF_min for q in qs), min(q.distortion_min for q in qs), key.element,
-                   min(q.hoop_min for q in qs))
+                   min(q.hoop_min for q in qs), max(q.lid_penetration for q in qs))

@@ -5,8 +5,8 @@ The lid is the plane of the rim's inner edge (it moves with the held rim face, w
 
     g = (Z_rim + u_z,rim) - z     (units of R; > 0 below the lid, clear of it)
 
-is pushed back by the contact penalty of the plane (`penalty.penalty`: slope LID_STIFFNESS
-C10 / R, rising from 0 over the first LID_ONSET R of penetration, snap.PenaltyContact's),
+is pushed back by the contact penalty of the plane (`penalty.penalty`: slope
+CONTACT_STIFFNESS C10 / R, rising from 0 over the first CONTACT_ONSET R of penetration),
 integrated over the reference inner surface (3 Gauss points per Q2 edge, weight 2 pi R dS).
 The energy sum_q w phi(g_q) is exact in u (g is linear in it), so the contact is
 conservative and the energy method's balance holds with it.  Where nothing reaches the lid
@@ -21,12 +21,10 @@ import numpy as np
 
 from .edge_quadrature import DN as _DN, GAUSS_W as _GAUSS_W, GAUSS_X as _GAUSS_X, N as _N
 from .forms import with_couplings
-from .penalty import penalty
+from .penalty import CONTACT_ONSET, CONTACT_STIFFNESS, penalty
 
-LID_STIFFNESS = 1e4     # C10 / R: the plane's contact penalty (snap.PenaltyContact)
-LID_ONSET = 1e-4        # R: ... its onset
-LID_THROUGH = 10 * LID_ONSET   # a penetration beyond this is a failure, not a contact (it
-#                                would carry a contact pressure of 9.5 C10)
+LID_THROUGH = 10 * CONTACT_ONSET   # a penetration beyond this is a failure, not a contact (it
+#                                    would carry a contact pressure of 9.5 C10)
 
 _DG = np.concatenate([-_N, np.ones((len(_GAUSS_X), 1))], axis=1)   # (Q, 4): dg / du
 
@@ -40,8 +38,8 @@ class Lid:
     Z_rim: float         # reference z of the rim's inner edge (the lid's plane at delta 0)
     w: np.ndarray        # (E, Q) 2 pi R dS times the Gauss weight, reference
     slots: np.ndarray    # (E, 16) positions of the (4 x 4) edge blocks in the CSR data
-    stiffness: float = LID_STIFFNESS
-    onset: float = LID_ONSET
+    stiffness: float = CONTACT_STIFFNESS
+    onset: float = CONTACT_ONSET
 
     def gaps(self, x) -> np.ndarray:
         """g / R at the Gauss points (E, Q): the lid's height above each point."""
@@ -90,6 +88,13 @@ class Lid:
         np.add.at(data, self.slots[edges].ravel(),
                   np.einsum("eq,qa,qb->eab", k, _DG, _DG).ravel())
         return type(K)((data, K.indices, K.indptr), shape=K.shape), r
+
+
+def own_lid(d):
+    """The Lid of the shell's own cavity in `d` (its cavity bound alone or beside a
+    pocket: solver.pocket), None without one."""
+    load = getattr(d.cavity, "shell", d.cavity)
+    return getattr(load, "lid", None)
 
 
 def lid_of(d, nodes: np.ndarray):

@@ -2,6 +2,10 @@
 lid's (solver.lid).  Units of the caller (gaps and onset in R, stiffness in C10 / R)."""
 import numpy as np
 
+CONTACT_STIFFNESS = 1e4     # C10 / R: the sharp contact's penalty slope (snap, the lid)
+CONTACT_ONSET = 1e-4        # R: the penetration over which its slope rises from 0
+#                             (snap.SnapSettings.onset says why this depth)
+
 
 def penalty(g, k: float, e: float):
     """(energy, stress, slope) of a contact penalty on the gap g (< 0: penetration): slope

@@ -23,7 +23,7 @@ from functools import lru_cache
 import numpy as np
 
 from .forms import Discretisation, deformation
-from .lid import LID_THROUGH
+from .lid import LID_THROUGH, own_lid
 
 # the refusal thresholds (DESIGN.md section 8): beyond them a result is not given
 J_RANGE = (0.75, 4 / 3)    # pointwise J of an incompressible material (healthy states: +-12 %)
@@ -96,7 +96,7 @@ def quality(d: Discretisation, x) -> Quality:
     checked = np.flatnonzero(~rim_corner_elements(d.capmesh))
     J_in = J[checked]
     e_J = int(checked[np.argmax(np.abs(np.log(np.abs(J_in) + 1e-300)).max(axis=1))])
-    lid = getattr(getattr(d.cavity, "shell", d.cavity), "lid", None)    # pocket or cavity
+    lid = own_lid(d)
     q = Quality(float(J_in.min()), float(J_in.max()), float(det2.min()), float(ratio.min()),
                 hoop_min=float(f[4].min()),
                 lid_penetration=0.0 if lid is None else lid.penetration(x))

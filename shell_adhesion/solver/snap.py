@@ -80,8 +80,8 @@ from .cohesive import CohesiveLaw, Interface, point_anchors_at, scaled
 from .contact import INTERFACES, constraints, gaps, rim_load
 from .forms import Discretisation, discretise, potential_energy, strain_energy
 from .geometry import T_MIN, Cap, check_cap, check_delta_max
-from .lid import LID_THROUGH
-from .penalty import penalty
+from .lid import LID_THROUGH, own_lid
+from .penalty import CONTACT_ONSET, CONTACT_STIFFNESS, penalty
 from .mesh import cap_mesh, mesh_spec
 from .linear import Timer
 from .pocket import PocketLoad, PocketOpened, seal
@@ -93,8 +93,8 @@ class PenaltyContact:
     `solver.cohesive.Interface`: energy, stress (> 0 pulls towards the plane, so < 0
     here: the plane pushes) and slope.  `stiffness` in C10 / R, `onset` / R."""
 
-    stiffness: float = 1e4
-    onset: float = 1e-4
+    stiffness: float = CONTACT_STIFFNESS
+    onset: float = CONTACT_ONSET
 
     @property
     def delta_c(self) -> float:     # the scale `arclength` steps by: the onset
@@ -152,7 +152,7 @@ class SnapSettings:
     #                            snap's fold of t/R 0.02, coarser mesh, 1e-10 is below the
     #                            round-off floor of the residual: 2e-13 to 7e-12 of 1.5e-3)
     max_states: int = 4000     # states on the whole path
-    stiffness: float = 1e4     # the contact penalty (PenaltyContact), C10 / R
+    stiffness: float = CONTACT_STIFFNESS   # the contact penalty (PenaltyContact), C10 / R
     open_ds: float = 1e-6      # a sealed pocket's opening is resolved to this arc step
     seal_lift: float = 0.1     # a sealed pocket closes at the first ring whose apex is
     #                            lifted by more than this many thicknesses (the soft
@@ -167,7 +167,7 @@ class SnapSettings:
     #                            settle (`_jump`: a displacement-controlled jump); 0: the
     #                            path ends there instead
     jump_descent: int = 3000   # ... the damped descent's bound on steps
-    onset: float = 1e-4        # ... and its onset / R: the contact force rises as the
+    onset: float = CONTACT_ONSET   # ... and its onset / R: the contact force rises as the
     #                            square of the penetration over this depth.  The sharpest
     #                            the continuation passes the snap with (t/R 0.02; 4e-5
     #                            turns back along the path, 3e-5 and below stop where the
@@ -443,7 +443,7 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
         if progress is not None:
             progress(states[-1])
     clock = time.perf_counter()
-    lid = _own_cavity(d)
+    lid = own_lid(d)
     while len(states) < s.max_states:
         if _through_lid(lid, states):
             ended_by = _lid_ends(states)
@@ -639,9 +639,9 @@ def trace_loading(d: Discretisation, delta_max: float, settings: SnapSettings = 
 
 
 def _through_lid(lid, states) -> bool:
-    """Whether the last state's inner surface has passed the lid of the cavity `lid` by
-    more than lid.LID_THROUGH (None: no cavity of the shell's own)."""
-    return lid is not None and len(states) > 1 and lid.through_lid(states[-1].x)
+    """Whether the last state's inner surface has passed `lid` (`lid.Lid.through`; None:
+    no cavity of the shell's own)."""
+    return lid is not None and len(states) > 1 and lid.through(states[-1].x)
 
 
 def _lid_ends(states) -> str:
@@ -823,13 +823,6 @@ LIFT_DESCENT = 600  # `_jump` from a lift-off: the residual-scaled descent's ste
 #                     state the suction destabilises, its flow creeps from the start (t/R
 #                     0.02, h/R 1, 0.2 p_cl, coarser mesh: with 3000 the same landing, 19 s
 #                     against 4 s)
-
-
-def _own_cavity(d):
-    """The shell's own cavity load (`cavity.CavityLoad`; bound alone or beside a
-    pocket), None without one."""
-    cavity = getattr(d.cavity, "shell", d.cavity)
-    return cavity if hasattr(cavity, "through_lid") else None
 
 
 def _lifted_off(d, states) -> bool:

@@ -22,7 +22,7 @@ from .forms import (Discretisation, Linearisation, deformation, potential_energy
 from .geometry import shown
 from .linear import Bordered, LinearSolver, SingularTangent, Timer
 from .material import limit_state
-from .quality import Quality, quality, worst
+from .quality import Quality, clamp_squeeze, quality, worst
 from shell_adhesion.errors import ConvergenceError, MaterialLimitError, QualityError
 
 
@@ -354,13 +354,14 @@ class _Problem:
         d = self.d
         q = quality(d, x)
         problem = q.problem(check_J)
+        a = float(deformed_radius(d, x, max(held))) if len(held) else 0.0
         if problem:
             cm = d.capmesh
+            hint = (clamp_squeeze(d, x, q, a)
+                    or "try a finer mesh or a smaller delta_max")
             raise QualityError(
                 f"element quality: {problem} at delta = {delta:.4g} R on the {cm.spec.name} "
-                f"mesh of t/R = {cm.cap.t:g}, h/R = {cm.cap.h:g}; try a finer mesh or a "
-                f"smaller delta_max")
-        a = float(deformed_radius(d, x, max(held))) if len(held) else 0.0
+                f"mesh of t/R = {cm.cap.t:g}, h/R = {cm.cap.h:g}; {hint}")
         V, p = (np.nan, np.nan) if d.cavity is None else d.cavity.measure(x)  # solver.cavity
         U = potential_energy(d, x) if U is None else U
         return State(delta, rim_load(d, r), U, a, tuple(held), joined,

@@ -7,6 +7,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+import shell_adhesion.solver.geometry as geometry
 import shell_adhesion.solver.path as path
 from shell_adhesion.errors import QualityError
 from shell_adhesion.solver.case import solve_loading
@@ -14,6 +15,7 @@ from shell_adhesion.solver.forms import discretise
 from shell_adhesion.solver.geometry import DEPTH_SHARE, Cap
 from shell_adhesion.solver.mesh import cap_mesh, mesh_spec
 from shell_adhesion.solver.quality import clamp_squeeze
+from shell_adhesion.solver.request import Request, answers, solve_request
 
 CLAMP = "squeezed between the plane and its clamped rim"
 
@@ -87,3 +89,16 @@ def test_a_finer_mesh_stops_near_the_same_delta(monkeypatch):
     assert all(CLAMP in r.stopped_by for r in runs)
     stops = [_stop_delta(r) for r in runs]
     assert abs(stops[0] - stops[1]) <= 0.03 * stops[1]
+
+
+@pytest.mark.slow
+def test_a_pull_off_beyond_the_clamp_is_refused_naming_it(monkeypatch):
+    """Below the domain (t/R 0.01, h/R 0.2, coarse mesh): at gamma/(C10 R) 0.03 the curve
+    still falls where the loading stopped at the clamp, and the refusal says so; 0.001 is
+    answered from the same paths."""
+    monkeypatch.setattr(geometry, "T_MIN", 0.01)
+    ps, _, _ = solve_request(0.01, 0.2, Request.serving(0.03), 0.03, mesh="coarse")
+    got = answers(ps, [0.001, 0.03])
+    assert not isinstance(got[0.001], Exception) and got[0.001][1].P_star < 0
+    refusal = str(got[0.03])
+    assert "still falling" in refusal and CLAMP in refusal

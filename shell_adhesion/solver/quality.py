@@ -134,7 +134,7 @@ def clamp_squeeze(d: Discretisation, x, q: Quality, a: float) -> str:
             f"(a = {a:.4g} R) lies within the bending length sqrt(R t) = {ell:.3g} R of the "
             f"rim (b = {b:.4g} R), and the worst element (r = {r:.4g} R) lies by that edge; the "
             f"clamp limits this loading, not the mesh (a finer mesh stops near the same "
-            f"delta): ask for a smaller delta_max")
+            f"delta)")
 
 
 def worst(*qs: Quality) -> Quality:

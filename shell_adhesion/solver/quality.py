@@ -23,7 +23,6 @@ stop is the clamp's, not the mesh's (`clamp_squeeze` says so in the refusal).
 """
 from dataclasses import dataclass, replace
 from functools import lru_cache
-
 import math
 
 import numpy as np
@@ -118,7 +117,7 @@ def clamp_squeeze(d: Discretisation, x, q: Quality, a: float) -> str:
     lies within the bending length sqrt(R t) of the clamped rim, with the worst element
     (its deformed centroid) within that length of the edge or beyond it.  Measured
     (`python benchmarks/clamp.py`): the coarse and default meshes of t/R 0.02-0.1, h/R 0.2
-    and 0.5 pressed to 0.9 h stop there, at deltas 1-9 % apart; the default and fine
+    and 0.5 pressed to 0.9 h stop there, at deltas 1-10 % apart; the default and fine
     meshes of t/R 0.02, h/R 0.2 1.2 % apart."""
     cap, element = d.capmesh.cap, q.element
     finite = np.all(np.isfinite([q.J_min, q.J_max, q.detF_min, q.distortion_min]))

@@ -29,7 +29,7 @@ from skfem import MeshQuad2
 
 from .contact import constraints
 from .edge_quadrature import DN as _DN, GAUSS_W as _GAUSS_W, N as _N
-from .forms import discretise
+from .forms import block_slots, discretise
 from .lid import lid_of
 from shell_adhesion.errors import InputError
 from .path import Settings, Timer, _Problem
@@ -267,26 +267,13 @@ def bind(d, cavity: Cavity):
     d, lid = lid_of(d, nodes)
     n_fe = 2 * d.n2 + d.n1
     dofs = np.concatenate([nodes, d.n2 + nodes], axis=1)
-    slots = edge_slots(d, dofs)
+    slots = block_slots(d, dofs)
     load = CavityLoad(cavity, n_fe, dofs, cm.nodes[0, nodes], cm.nodes[1, nodes], slots, 1.0,
                       lid=lid)
     load = replace(load, V0=load.volume(np.zeros(n_fe + 1)))
     if cavity.sealed:
         load = replace(load, border=_border(d.csr_indptr, d.csr_indices, np.unique(dofs)))
     return replace(d, cavity=load)
-
-
-def edge_slots(d, dofs):
-    """(E, 36) positions in the FE CSR data (forms.discretise's pattern) of the blocks
-    coupling each edge's 6 dofs (`dofs`, (E, 6): u_r of its 3 nodes, then u_z)."""
-    n_fe = 2 * d.n2 + d.n1
-    keys_csr = (np.repeat(np.arange(n_fe, dtype=np.int64), np.diff(d.csr_indptr)) * n_fe
-                + d.csr_indices)
-    keys = (dofs[:, :, None].astype(np.int64) * n_fe + dofs[:, None, :]).reshape(len(dofs), 36)
-    slots = np.searchsorted(keys_csr, keys)
-    if not np.array_equal(keys_csr[np.minimum(slots, len(keys_csr) - 1)], keys):
-        raise ValueError("surface dofs are not coupled in the FE sparsity pattern")
-    return slots
 
 
 def _border(indptr, indices, rows):

@@ -141,8 +141,7 @@ def with_couplings(d: Discretisation, rows, cols) -> Discretisation:
     (a load coupling dofs that share no element: the cavity's lid, solver.cavity); the
     element entries keep their values, the new ones start at zero."""
     ndof = len(d.csr_indptr) - 1
-    old = (np.repeat(np.arange(ndof, dtype=np.int64), np.diff(d.csr_indptr)) * ndof
-           + d.csr_indices)
+    old = _csr_keys(d)
     rows, cols = np.asarray(rows, dtype=np.int64), np.asarray(cols, dtype=np.int64)
     keys = np.union1d(old, np.concatenate([rows * ndof + cols, cols * ndof + rows]))
     if len(keys) == len(old):
@@ -151,6 +150,27 @@ def with_couplings(d: Discretisation, rows, cols) -> Discretisation:
     indptr = np.searchsorted(keys // ndof, np.arange(ndof + 1)).astype(np.int32)
     slot = np.searchsorted(keys, old)[d.csr_slot]
     return replace(d, csr_indptr=indptr, csr_indices=indices, csr_slot=slot)
+
+
+def _csr_keys(d: Discretisation) -> np.ndarray:
+    """row * ndof + column of each stored entry of d's CSR pattern, in storage order
+    (sorted)."""
+    ndof = len(d.csr_indptr) - 1
+    return (np.repeat(np.arange(ndof, dtype=np.int64), np.diff(d.csr_indptr)) * ndof
+            + d.csr_indices)
+
+
+def block_slots(d: Discretisation, dofs) -> np.ndarray:
+    """(E, k * k) positions in d's CSR data of the blocks coupling the k dofs of each row
+    of `dofs` (E, k), row-major; ValueError if a pair is not in the pattern."""
+    dofs = np.asarray(dofs, dtype=np.int64)
+    ndof, (E, k) = len(d.csr_indptr) - 1, dofs.shape
+    keys = _csr_keys(d)
+    pairs = (dofs[:, :, None] * ndof + dofs[:, None, :]).reshape(E, k * k)
+    slots = np.searchsorted(keys, pairs)
+    if not np.array_equal(keys[np.minimum(slots, len(keys) - 1)], pairs):
+        raise ValueError("the dofs are not coupled in the FE sparsity pattern")
+    return slots
 
 
 def _fields(d: Discretisation, x):

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .edge_quadrature import DN as _DN, GAUSS_W as _GAUSS_W, GAUSS_X as _GAUSS_X, N as _N
-from .forms import with_couplings
+from .forms import block_slots, with_couplings
 from .penalty import CONTACT_ONSET, CONTACT_STIFFNESS, penalty
 
 LID_THROUGH = 10 * CONTACT_ONSET   # a penetration beyond this is a failure, not a contact (it
@@ -109,9 +109,4 @@ def lid_of(d, nodes: np.ndarray):
     R0, Z0 = cm.nodes[0, nodes], cm.nodes[1, nodes]
     dS = np.hypot(R0 @ _DN.T, Z0 @ _DN.T)                      # |dX / dxi| (E, Q)
     w = 2 * np.pi * (R0 @ _N.T) * dS * _GAUSS_W
-    ndof = len(d.csr_indptr) - 1
-    keys = (np.repeat(np.arange(ndof, dtype=np.int64), np.diff(d.csr_indptr)) * ndof
-            + d.csr_indices)
-    pairs = (dofs[:, :, None].astype(np.int64) * ndof + dofs[:, None, :]).reshape(len(dofs), 16)
-    slots = np.searchsorted(keys, pairs)
-    return d, Lid(dofs, Z0, float(cm.nodes[1, rim]), w, slots)
+    return d, Lid(dofs, Z0, float(cm.nodes[1, rim]), w, block_slots(d, dofs))

@@ -40,10 +40,11 @@ import numpy as np
 
 from shell_adhesion.errors import ConvergenceError, InputError
 
-from .cavity import (P_ATM_KPA, Cavity, _border, edge_slots, first_touch, gas_energy,
-                     gas_volume, pressure_tangent)
+from .cavity import (P_ATM_KPA, Cavity, _border, first_touch, gas_energy, gas_volume,
+                     pressure_tangent)
 from .cavity import bind as bind_cavity
 from .edge_quadrature import GAUSS_W as _GAUSS_W, GAUSS_X as _GAUSS_X
+from .forms import block_slots
 
 MODES = ("vented", "sealed")
 
@@ -307,7 +308,7 @@ def bind(d, pocket: Pocket):
     dofs = np.concatenate([d.ur(nodes), d.uz(nodes)], axis=1)
     n_fe = 2 * d.n2 + d.n1
     load = PocketLoad(pocket, n_fe, dofs, cm.nodes[0, nodes], cm.nodes[1, nodes],
-                      edge_slots(d, dofs), _border(d.csr_indptr, d.csr_indices, np.unique(dofs)),
+                      block_slots(d, dofs), _border(d.csr_indptr, d.csr_indices, np.unique(dofs)),
                       shell=shell)
     return replace(d, cavity=load)
 

@@ -75,10 +75,20 @@ class Settings:
     #                                 lands on another equilibrium, and U_E's spline is as
     #                                 accurate on thin shells as on thick ones (1e-2 left G
     #                                 noisy: P* of t/R 0.02, h/R 0.2 moved 2 %)
+    step_stiffness_tol: float = 0.5  # a relaxation step is also halved (as above) while
+    #                                 dP/ddelta changes over it by more than this share of
+    #                                 its larger end value (`stiffness_change`): the energy
+    #                                 check sees the step's work only, and a step over a
+    #                                 knee of P(delta) can pass it while U_E's spline misses
+    #                                 the knee (t/R 0.01, h/R 0.2, fine mesh: one path
+    #                                 stepped 0.05 R past a stiffening x16 where its
+    #                                 neighbours took 9 states; its two pairs put P* at 1.9x
+    #                                 the curve's minimum)
 
 
 CHORD_GAIN = 1e-2    # the residual cut of an iteration after which the next is a chord step
 CHORD_LEFT = 3       # or: chord steps at the last cut's rate reach the tolerance in this many
+STIFFNESS_FLOOR = 0.1  # stiffness_change's floor: this share of the path's first dP/ddelta
 REFINE_MAX = 6        # iterative refinement of the tangent direction from a stale factorisation
 REFINE_TOL = 1e-10    # its last correction relative to the direction
 
@@ -581,7 +591,9 @@ def relax(d: Discretisation, interface: str, start: State, stop, step: float,
 
     `stop(state)` ends the path when it returns True (the state is kept).  A step is
     halved while it is not energy-consistent (`step_mismatch` above
-    settings.step_energy_tol), down to step / 1000, where it is taken as it is.  The path
+    settings.step_energy_tol) or dP/ddelta changes over it by more than
+    settings.step_stiffness_tol of its larger end value (`stiffness_change`), down to
+    step / 1000, where it is taken as it is.  The path
     also ends, with the reason in `ended_by`, when Newton fails below step / 1000 or after
     `settings.max_points` states.
     """
@@ -634,7 +646,9 @@ def relax(d: Discretisation, interface: str, start: State, stop, step: float,
         dxn, dPn = pb.tangent_direction(Kn, c, pb.last_lu)
         Un = potential_energy(d, xn)
         miss = step_mismatch(states[-1], dn, rim_load(d, rn), Un, dPn)
-        if not miss <= settings.step_energy_tol and h / 2 >= step * 1e-3:   # NaN too
+        bend = stiffness_change(states[-1].dP_ddelta, dPn, states[0].dP_ddelta)
+        if (not (miss <= settings.step_energy_tol and bend <= settings.step_stiffness_tol)
+                and h / 2 >= step * 1e-3):                                  # NaN too
             modified = False        # the step outran its cubic or left the branch: shorter
             h /= 2
             continue
@@ -676,6 +690,16 @@ def step_mismatch(s0: State, delta, P, U, dP) -> float:
     W = h * (s0.P + P) / 2 - h * h * (dP - s0.dP_ddelta) / 12
     scale = abs(h) * (abs(s0.P) + abs(P)) / 2 + h * h * (abs(s0.dP_ddelta) + abs(dP)) / 12
     return abs(U - s0.U - W) / max(scale, 1e-300)
+
+
+def stiffness_change(dP0, dP1, dP_start) -> float:
+    """|dP1 - dP0| / max(|dP0|, |dP1|, STIFFNESS_FLOOR |dP_start|): how much the slope
+    dP/ddelta changes over one relaxation step, as a share of its larger end value (the
+    floor, a share of the path's first slope, keeps a slope crossing zero from halving a
+    step without end).  Small where U_E's quintic spline through (U, P, dP/ddelta) follows
+    the path between the two states; near 1 or more over a knee of P(delta)."""
+    scale = max(abs(dP0), abs(dP1), STIFFNESS_FLOOR * abs(dP_start))
+    return abs(dP1 - dP0) / scale if scale > 0 else 0.0
 
 
 def _relaxation_step(pb, c, last, now, h, modified=True):

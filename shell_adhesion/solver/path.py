@@ -82,7 +82,7 @@ class Settings:
     #                                 knee of P(delta) can pass it while U_E's spline misses
     #                                 the knee (t/R 0.01, h/R 0.2, fine mesh: one path
     #                                 stepped 0.05 R past a stiffening x16 where its
-    #                                 neighbours took 9 states; its two pairs put P* at 1.9x
+    #                                 neighbours took 12 states; its two pairs put P* at 1.9x
     #                                 the curve's minimum)
 
 

@@ -27,12 +27,13 @@ NO_RULE = Settings(step_stiffness_tol=math.inf)
 def test_stiffness_change():
     """The knee's step measures 0.94; a constant slope 0; a slope crossing zero is
     measured against the floor (a tenth of the path's first slope), so it does not halve a
-    step without end; a NaN slope is not <= any tolerance (the step is halved)."""
+    step without end; a slope that is not finite is not <= any tolerance (the step is halved)."""
     assert stiffness_change(0.0448, 0.7146, 0.0448) == pytest.approx(0.937, abs=1e-3)
     assert stiffness_change(0.3, 0.3, 0.1) == 0.0
     assert stiffness_change(0.01, -0.01, 0.5) == pytest.approx(0.4)
     assert stiffness_change(0.0, 0.0, 0.0) == 0.0
-    assert not stiffness_change(0.1, math.nan, 0.1) <= Settings().step_stiffness_tol
+    for slopes in ((0.1, math.nan, 0.1), (math.nan, 0.1, 0.1), (0.1, 0.2, math.inf)):
+        assert not stiffness_change(*slopes) <= Settings().step_stiffness_tol
 
 
 def _steps(path, start_slope):

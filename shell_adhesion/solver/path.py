@@ -697,9 +697,13 @@ def stiffness_change(dP0, dP1, dP_start) -> float:
     dP/ddelta changes over one relaxation step, as a share of its larger end value (the
     floor, a share of the path's first slope, keeps a slope crossing zero from halving a
     step without end).  Small where U_E's quintic spline through (U, P, dP/ddelta) follows
-    the path between the two states; near 1 or more over a knee of P(delta)."""
+    the path between the two states; near 1 or more over a knee of P(delta).  NaN if a
+    slope is not finite (the step is then halved)."""
     scale = max(abs(dP0), abs(dP1), STIFFNESS_FLOOR * abs(dP_start))
-    return abs(dP1 - dP0) / scale if scale > 0 else 0.0
+    change = abs(dP1 - dP0)
+    if not (math.isfinite(change) and math.isfinite(scale)):
+        return math.nan
+    return change / scale if scale > 0 else 0.0
 
 
 def _relaxation_step(pb, c, last, now, h, modified=True):

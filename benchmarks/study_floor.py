@@ -12,23 +12,24 @@ loading's time of the same day (benchmarks/calculix_loading.py), for the floor a
 """
 import argparse
 import pathlib
-import sqlite3
 import sys
 
-INDEX = "index.sqlite"
+from shell_adhesion.catalogue.store import Catalogue
+from shell_adhesion.solver.contact import INTERFACES
+from shell_adhesion.solver.mesh import LEVELS
+
 TARGET = 1.9        # the study's target: cold run / CalculiX loading
 
 
 def rows(catalogue: pathlib.Path) -> list:
-    index = catalogue / INDEX
-    if not index.is_file():
-        sys.exit(f"catalogue: {catalogue} holds no {INDEX} (run a study into it first)")
-    db = sqlite3.connect(index.resolve().as_uri() + "?mode=ro", uri=True)
+    """(mesh, loading_s, relaxation_s) of every finished set the catalogue timed."""
     try:
-        return db.execute("SELECT mesh, loading_s, relaxation_s FROM pathsets "
-                          "WHERE status = 'ok' AND loading_s IS NOT NULL").fetchall()
-    finally:
-        db.close()
+        cat = Catalogue(catalogue, create=False)
+    except FileNotFoundError:
+        sys.exit(f"catalogue: {catalogue} holds no index (run a study into it first)")
+    with cat:
+        return [(mesh, r["loading_s"], r["relaxation_s"]) for mesh in LEVELS
+                for interface in INTERFACES for r in cat.timings(interface, mesh)]
 
 
 def main():

@@ -36,9 +36,10 @@ def test_stiffness_change():
         assert not stiffness_change(*slopes) <= Settings().step_stiffness_tol
 
 
-def _steps(path, start_slope):
+def _steps(path):
+    """stiffness_change of each step of a relaxation path."""
     s = path.states
-    return [stiffness_change(a.dP_ddelta, b.dP_ddelta, start_slope)
+    return [stiffness_change(a.dP_ddelta, b.dP_ddelta, s[0].dP_ddelta)
             for a, b in zip(s[:-1], s[1:])]
 
 
@@ -56,8 +57,8 @@ def test_every_relaxation_step_keeps_its_slope():
     for s in starts:
         on = relax_from(d, "no_slip", s, 0.002, Settings())
         off = relax_from(d, "no_slip", s, 0.002, NO_RULE)
-        worst_on = max(worst_on, max(_steps(on, on.states[0].dP_ddelta)))
-        worst_off = max(worst_off, max(_steps(off, off.states[0].dP_ddelta)))
+        worst_on = max(worst_on, max(_steps(on)))
+        worst_off = max(worst_off, max(_steps(off)))
         extra += len(on.states) - len(off.states)
     assert worst_off > tol
     assert worst_on <= tol
